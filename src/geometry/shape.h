@@ -1,0 +1,41 @@
+// Shape: one object of the scene in its canonical object space, placed by a transform.
+// Every shape answers bounds(), tessellate() (tessellate.h) and, for the ray tracer, intersect().
+#pragma once
+
+#include <vector>
+
+#include "math/bounds.h"
+#include "math/transform.h"
+#include "scene/scene_desc.h"
+
+namespace luz {
+
+/// Canonical object spaces (world = transform.world_from_object · object):
+/// - sphere:   the unit sphere at the origin;
+/// - box:      the axis-aligned box [lo, hi];
+/// - cylinder: radius 1 around +z, z ∈ [0, 1], `caps` closes z = 0 and z = 1;
+/// - cone:     radius 1 − z around +z, z ∈ [0, 1] (apex at z = 1), `caps` closes z = 0;
+/// - torus:    major radius 1 around +z in the z = 0 plane, minor radius `minor` (< 1);
+/// - plane:    z = 0, outward normal +z, unbounded;
+/// - triangle: `vertices` as the keys give them; two-sided.
+struct Shape {
+    ShapeType type = ShapeType::sphere;
+    int material = 0;     ///< index into SceneDesc::materials
+    int object = 0;       ///< index into SceneDesc::objects
+    Transform transform;  ///< user transform · placement of the canonical shape
+    bool caps = false;    ///< cylinder: both ends; cone: the base
+    float minor = 0.25f;  ///< torus: minor_radius / major_radius
+    Vec3 lo, hi;          ///< box corners in object space
+    Vec3 vertices[3];     ///< triangle vertices in object space
+};
+
+/// The runtime shape of an object description (validated: non-degenerate).
+Shape make_shape(const ObjectDesc& o, int object_index);
+
+/// World-space bounds; an unbounded plane gives infinite bounds.
+Bounds3 bounds(const Shape& s);
+
+/// Whether the shape is finite (everything but the plane).
+inline bool is_bounded(const Shape& s) { return s.type != ShapeType::plane; }
+
+}  // namespace luz

@@ -1,0 +1,20 @@
+// Tessellation of shapes into triangles with analytic normals, for the zbuffer pipeline.
+#pragma once
+
+#include "geometry/shape.h"
+#include "geometry/triangle_mesh.h"
+
+namespace luz {
+
+/// Appends the triangles of shape `s` in world space to `out` at tessellation `level`
+/// (segments around a full circle; ≥ 3). Normals are the analytic surface normals transformed
+/// by the inverse transpose, normalised. Closed shapes come out watertight (every edge shared
+/// by exactly two triangles, by position). Planes append nothing (the rasterizer draws them
+/// as quads clipped to the view).
+void tessellate(const Shape& s, int level, TriangleMesh& out);
+
+/// Area of the shape's surface as the tessellation would approximate it, in world space,
+/// for shapes without a transform's non-uniform scaling (tests compare against it).
+double analytic_area(const Shape& s);
+
+}  // namespace luz

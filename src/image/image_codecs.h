@@ -1,0 +1,36 @@
+// Image codecs (internal to the image layer): each format turns an Image into the bytes of a
+// file and back, in memory; image_io.cpp does the file handling and names the file in errors.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "image/image.h"
+#include "scene/scene_desc.h"
+
+namespace luz {
+
+// Every function here throws ImageError (or std::bad_alloc) with a message that does not name
+// the file: the caller prefixes it. Encoders expect a non-empty, consistent image.
+
+/// PNG, 8-bit RGB, values from encode_8bit; an sRGB chunk only when `e` is srgb.
+std::string encode_png(const Image& img, Encoding e);
+/// PNG of any colour type and bit depth: alpha dropped, grey replicated, values v/(2^bits − 1).
+Image decode_png(std::string_view bytes);
+
+/// Binary PPM (P6), maxval 255, values from encode_8bit.
+std::string encode_ppm(const Image& img, Encoding e);
+/// Binary PPM (P6), any maxval up to 65535: values v/maxval.
+Image decode_ppm(std::string_view bytes);
+
+/// PFM: "PF\n<w> <h>\n-1.0\n", little-endian float32 RGB, rows from the bottom up; unclamped.
+std::string encode_pfm(const Image& img);
+/// PFM, colour (PF) or grey (Pf), either byte order (by the sign of the scale).
+Image decode_pfm(std::string_view bytes);
+
+/// OpenEXR, 32-bit FLOAT channels R, G, B, ZIP compression (lossless); unclamped.
+std::string encode_exr(const Image& img);
+/// OpenEXR: channels R, G, B (or Y alone) of the data window, as float.
+Image decode_exr(std::string_view bytes);
+
+}  // namespace luz

@@ -1,0 +1,35 @@
+// Image files: PNG and PPM (8-bit, linear or sRGB encoded), PFM and EXR (float, unclamped).
+// Writers go through a temporary file renamed into place, so a failure never leaves a partial
+// file and never truncates an existing one.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include "image/image.h"
+#include "scene/scene_desc.h"
+
+namespace luz {
+
+enum class ImageFormat { png, ppm, pfm, exr };
+
+/// Raised when an image cannot be written or read; the message names the file.
+struct ImageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+/// The format for a file name by its extension (case-insensitive); false if unknown.
+bool format_from_path(const std::string& path, ImageFormat& out);
+
+/// 8-bit value of a linear intensity: linear round(255·clamp(I,0,1)), or the sRGB curve.
+uint8_t encode_8bit(float I, Encoding e);
+
+/// Writes `img` to `path` in the format its extension names, atomically.
+void write_image(const std::string& path, const Image& img, Encoding e = Encoding::linear);
+
+/// Reads a PNG, PPM, PFM or EXR file (8-bit values become v/255, not decoded); for tests
+/// and image comparison.
+Image read_image(const std::string& path);
+
+}  // namespace luz

@@ -1,0 +1,33 @@
+// render(): dispatches a runtime scene to the pipeline its settings name.
+#include "render/render.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "render/parallel.h"
+#include "render/zbuffer.h"
+
+namespace luz {
+
+Image render(const Scene& scene, const RenderControl& control, RenderStats& stats) {
+    const auto start = std::chrono::steady_clock::now();
+    const ImageDesc& img = scene.desc.image;
+    stats.width = img.width;
+    stats.height = img.height;
+    stats.threads = resolve_threads(control.threads);
+    Image out(img.width, img.height, img.background);
+    switch (scene.desc.render.pipeline) {
+        case Pipeline::zbuffer: {
+            const ZbufferGeometry geometry = prepare_zbuffer(scene);
+            render_zbuffer(scene, geometry, control, out, stats);
+            break;
+        }
+        case Pipeline::raycast:
+        case Pipeline::raytrace:
+            throw std::runtime_error("the raycast and raytrace pipelines are not available yet");
+    }
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+}  // namespace luz

@@ -1,0 +1,25 @@
+// render(): a runtime scene through the pipeline it names, to a float image.
+#pragma once
+
+#include <atomic>
+#include <functional>
+
+#include "geometry/scene.h"
+#include "image/image.h"
+#include "render/stats.h"
+
+namespace luz {
+
+/// How a render is run: threads, progress reports and cancellation.
+struct RenderControl {
+    int threads = 0;  ///< 0: all cores
+    /// Called now and then with the fraction done (0..1), from any one thread at a time.
+    std::function<void(double)> progress;
+    /// When set and true, the render stops early (the image is then incomplete).
+    const std::atomic<bool>* cancel = nullptr;
+};
+
+/// Renders `scene` with its render settings; fills `stats`.
+Image render(const Scene& scene, const RenderControl& control, RenderStats& stats);
+
+}  // namespace luz

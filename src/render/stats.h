@@ -1,0 +1,33 @@
+// RenderStats: what a render counted and measured, written by `--stats FILE` (SPEC §3).
+#pragma once
+
+#include <cstdint>
+
+namespace luz {
+
+struct RenderStats {
+    double seconds = 0;  ///< render time, from scene build to image in memory
+    int width = 0, height = 0, threads = 0;
+    uint64_t rays_primary = 0, rays_shadow = 0, rays_reflection = 0, rays_refraction = 0;
+    uint64_t tests_primitive = 0, tests_bounds = 0;  ///< intersection tests
+    uint64_t pixels_refined = 0;                     ///< adaptive antialiasing
+    uint64_t samples = 0;                            ///< colour evaluations
+    uint64_t triangles = 0;  ///< zbuffer: rasterized; raytrace: in meshes
+    uint64_t bvh_nodes = 0;
+    uint64_t peak_memory_bytes = 0;
+
+    /// Adds another thread's counters (times and sizes are not summed).
+    void add_counters(const RenderStats& o) {
+        rays_primary += o.rays_primary;
+        rays_shadow += o.rays_shadow;
+        rays_reflection += o.rays_reflection;
+        rays_refraction += o.rays_refraction;
+        tests_primitive += o.tests_primitive;
+        tests_bounds += o.tests_bounds;
+        pixels_refined += o.pixels_refined;
+        samples += o.samples;
+        triangles += o.triangles;
+    }
+};
+
+}  // namespace luz

@@ -1,0 +1,31 @@
+// The zbuffer pipeline: tessellate, project, clip, rasterize with a float depth buffer, and
+// shade every covered pixel with shade() (SPEC: the model evaluated at every point).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "geometry/scene.h"
+#include "geometry/triangle_mesh.h"
+#include "image/image.h"
+#include "render/render.h"
+#include "render/stats.h"
+
+namespace luz {
+
+/// The scene's triangles, tessellated once, in world space; a triangle's material is that of
+/// its shape. Planes and light spheres are included (planes as view-covering quads).
+struct ZbufferGeometry {
+    TriangleMesh mesh;
+    std::vector<int32_t> triangle_material;  ///< material index, or −1 − light for a light sphere
+    std::vector<Vec3> triangle_normal;       ///< unit outward geometric normal per triangle
+};
+
+/// Tessellates every shape of `scene` at its `render.tessellation` level.
+ZbufferGeometry prepare_zbuffer(const Scene& scene);
+
+/// Rasterizes prepared geometry into `out` (scene.desc.image size, background filled).
+void render_zbuffer(const Scene& scene, const ZbufferGeometry& geometry,
+                    const RenderControl& control, Image& out, RenderStats& stats);
+
+}  // namespace luz

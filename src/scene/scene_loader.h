@@ -1,0 +1,32 @@
+// Scene loading: JSON text (a file or a built-in demo) plus overrides → validated SceneDesc.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scene/input_error.h"
+#include "scene/scene_desc.h"
+
+namespace luz {
+
+/// One `--set PATH=JSON` (or a command-line option turned into one). `origin` names where it
+/// came from in messages, e.g. "--set" or "--width".
+struct Override {
+    std::string path;  ///< dotted key path; array elements by index, e.g. "lights.0.intensity"
+    std::string json;  ///< the value as JSON text
+    std::string origin = "--set";
+};
+
+/// Parses "PATH=JSON" as given to --set; throws InputError when malformed.
+Override parse_set(const std::string& arg);
+
+/// Loads `source` — a file path or "demo:NAME" — applies the overrides in order and validates
+/// the result (SPEC §2). Throws InputError naming the file and the line:column or key path.
+SceneDesc load_scene(const std::string& source, const std::vector<Override>& overrides = {});
+
+/// The same from JSON text; `file` labels messages and `base_dir` resolves relative paths.
+SceneDesc parse_scene(std::string_view json_text, const std::string& file,
+                      const std::string& base_dir, const std::vector<Override>& overrides = {});
+
+}  // namespace luz

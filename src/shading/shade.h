@@ -1,0 +1,104 @@
+// shade(): the illumination models of SPEC §1, the only place they are written.
+// Both pipelines build a ShadingPoint and call it; it returns the colour and, on request, its terms.
+#pragma once
+
+#include <cmath>
+#include <span>
+
+#include "math/vec3.h"
+#include "scene/material.h"
+#include "scene/scene_desc.h"
+
+namespace luz {
+
+/// What the model needs of the scene: the model, Ia, K and the lights.
+struct Lighting {
+    Model model = Model::phong;
+    Rgb Ia{1.0f};   ///< ambient light
+    float K = 1.0f;  ///< attenuation constant of Il/(d+K)
+    std::span<const Light> lights;
+};
+
+/// A surface point as both pipelines see it.
+struct ShadingPoint {
+    Vec3 P;   ///< world position
+    Vec3 N;   ///< unit shading normal (outward; flipped towards the viewer by shade())
+    Vec3 Ng;  ///< unit outward geometric normal (checker cells; two-sided flip test)
+    Vec3 S;   ///< unit vector from P towards the viewer
+    const Material* material = nullptr;
+};
+
+/// One light's share at a point: vis · (diffuse + specular) is what it adds.
+struct LightTerm {
+    float visibility = 1;  ///< vis_j: 1 lit, 0 blocked, transparency product in between
+    float distance = 0;    ///< d_j
+    float cos_theta = 0;   ///< max(0, N·L_j)
+    float cos_alpha = 0;   ///< max(0, R_j·S), 0 when N·L_j ≤ 0
+    Rgb diffuse;           ///< vis_j·Il_j·Kd·cosθ_j (lambert) or vis_j·Il_j/(d_j+K)·Kd·cosθ_j
+    Rgb specular;          ///< vis_j·Il_j/(d_j+K)·Ks·cosα_j^n (phong only)
+};
+
+/// The terms that add up to shade()'s colour: ambient + Σ_j (diffuse_j + specular_j).
+struct ShadeTerms {
+    Rgb ambient;                 ///< Ia·Ka
+    std::span<LightTerm> light;  ///< one per light, filled when at least lights.size() long
+    bool flipped = false;        ///< N was flipped towards the viewer (two-sided normals)
+};
+
+/// Evaluates the model at p (SPEC §1). `visibility(j, P, L_j, d_j)` returns vis_j and is only
+/// asked for lights in front of the surface (cosθ_j > 0). Writes the terms when `terms` is set.
+template <class Visibility>
+inline Rgb shade(const ShadingPoint& p, const Lighting& lighting, Visibility&& visibility,
+                 ShadeTerms* terms = nullptr) {
+    const Material& m = *p.material;
+    const SurfaceConstants c = surface_constants(m, p.P, p.Ng);
+
+    // Two-sided normals (SPEC §1.3): N faces the viewer.
+    Vec3 N = p.N;
+    const bool flipped = dot(N, p.S) < 0;
+    if (flipped) N = -N;
+
+    const Rgb ambient = lighting.Ia * c.ka;  // Ia·Ka
+    Rgb I = ambient;
+    const bool write_terms = terms && terms->light.size() >= lighting.lights.size();
+    if (terms) {
+        terms->ambient = ambient;
+        terms->flipped = flipped;
+    }
+    for (size_t j = 0; j < lighting.lights.size(); ++j) {
+        const Light& light = lighting.lights[j];
+        const Vec3 to_light = light.position - p.P;
+        const float d = length(to_light);
+        const Vec3 L = to_light / d;
+        const float N_dot_L = dot(N, L);
+        LightTerm t;
+        t.distance = d;
+        if (N_dot_L > 0) {
+            t.cos_theta = N_dot_L;  // cosθ_j = max(0, N·L_j)
+            t.visibility = visibility(j, p.P, L, d);
+            if (t.visibility > 0) {
+                if (lighting.model == Model::lambert) {
+                    // I += vis_j·Il_j·Kd·cosθ_j
+                    t.diffuse = light.intensity * c.kd * (t.visibility * t.cos_theta);
+                } else {
+                    // I += vis_j·Il_j/(d_j+K)·(Kd·cosθ_j + Ks·cosα_j^n)
+                    const Vec3 R = N * (2 * N_dot_L) - L;  // mirror direction of L_j
+                    t.cos_alpha = std::fmax(0.0f, dot(R, p.S));
+                    const Rgb Il_att = light.intensity * (t.visibility / (d + lighting.K));
+                    t.diffuse = Il_att * c.kd * t.cos_theta;
+                    t.specular = Il_att * m.ks * std::pow(t.cos_alpha, m.n);
+                }
+                I += t.diffuse + t.specular;
+            }
+        }
+        if (write_terms) terms->light[j] = t;
+    }
+    return I;
+}
+
+/// Visibility for pipelines without shadow rays (zbuffer, raycast): every light is seen.
+struct AllVisible {
+    float operator()(size_t, const Vec3&, const Vec3&, float) const { return 1.0f; }
+};
+
+}  // namespace luz
