@@ -3,9 +3,11 @@
 #pragma once
 
 #include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <thread>
 
 namespace luz {
@@ -20,7 +22,12 @@ inline int resolve_threads(int requested) {
 /// Calls body(i) for every i in [0, count), one item per task, on `threads` threads.
 template <class Body>
 void parallel_items(int threads, size_t count, Body&& body) {
-    tbb::task_arena arena(resolve_threads(threads));
+    const int n = resolve_threads(threads);
+    // Allow more threads than cores when asked for (results do not depend on it).
+    const tbb::global_control allow(tbb::global_control::max_allowed_parallelism,
+                                    std::max<size_t>(static_cast<size_t>(n),
+                                                     std::thread::hardware_concurrency()));
+    tbb::task_arena arena(n);
     arena.execute([&] {
         tbb::parallel_for(
             tbb::blocked_range<size_t>(0, count, 1),
