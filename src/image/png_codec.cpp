@@ -1,0 +1,198 @@
+// PNG codec with libpng: writes 8-bit RGB, reads any PNG (8/16-bit, grey, palette, alpha).
+// libpng reports errors by longjmp: every setjmp lives in a small function without C++ objects.
+
+#include <png.h>
+
+#include <csetjmp>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "image/image_codecs.h"
+#include "image/image_io.h"
+
+namespace luz {
+namespace {
+
+/// What libpng's callbacks share with us: the output or input bytes and the last error.
+struct PngContext {
+    std::string* out = nullptr;
+    std::string_view in;
+    size_t pos = 0;
+    char message[200] = "libpng error";
+};
+
+PngContext& context_of(png_structp png) {
+    return *static_cast<PngContext*>(png_get_error_ptr(png));
+}
+
+void on_error(png_structp png, png_const_charp msg) {
+    std::snprintf(context_of(png).message, sizeof(PngContext::message), "%s", msg);
+    png_longjmp(png, 1);
+}
+
+void on_warning(png_structp, png_const_charp) {}
+
+void write_bytes(png_structp png, png_bytep data, size_t n) {
+    PngContext& ctx = context_of(png);
+    bool ok = true;
+    try {
+        ctx.out->append(reinterpret_cast<const char*>(data), n);
+    } catch (...) {  // no C++ exception may cross libpng's C frames
+        ok = false;
+    }
+    if (!ok) png_error(png, "out of memory");
+}
+
+void flush_bytes(png_structp) {}
+
+void read_bytes(png_structp png, png_bytep data, size_t n) {
+    PngContext& ctx = context_of(png);
+    if (n > ctx.in.size() - ctx.pos) png_error(png, "file is truncated");
+    std::memcpy(data, ctx.in.data() + ctx.pos, n);
+    ctx.pos += n;
+}
+
+/// Runs libpng's writer over prepared rows; false on error (message in ctx).
+bool run_png_writer(PngContext& ctx, png_uint_32 w, png_uint_32 h, png_bytepp rows, bool srgb) {
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &ctx, on_error, on_warning);
+    if (png == nullptr) return false;
+    png_infop info = png_create_info_struct(png);
+    if (info == nullptr) {
+        png_destroy_write_struct(&png, nullptr);
+        return false;
+    }
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        return false;
+    }
+    png_set_write_fn(png, &ctx, write_bytes, flush_bytes);
+    png_set_IHDR(png, info, w, h, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    // Linear files carry no colour chunk: viewers show the values as they are (the lecture's
+    // model); sRGB-encoded files say so.
+    if (srgb) png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_write_info(png, info);
+    png_write_image(png, rows);
+    png_write_end(png, nullptr);
+    png_destroy_write_struct(&png, &info);
+    return true;
+}
+
+/// A libpng reader, destroyed with its owner.
+struct PngReader {
+    PngContext ctx;
+    png_structp png = nullptr;
+    png_infop info = nullptr;
+    ~PngReader() {
+        if (png != nullptr)
+            png_destroy_read_struct(&png, info != nullptr ? &info : nullptr, nullptr);
+    }
+};
+
+/// Reads the header and sets the transforms to 3-channel RGB; false on error.
+bool read_png_header(PngReader& r, png_uint_32& w, png_uint_32& h, int& bits, size_t& rowbytes) {
+    if (setjmp(png_jmpbuf(r.png))) return false;
+    png_set_read_fn(r.png, &r.ctx, read_bytes);
+    png_read_info(r.png, r.info);
+    png_set_expand(r.png);  // palette → RGB, grey below 8 bits → 8, tRNS → alpha
+    png_set_gray_to_rgb(r.png);
+    png_set_strip_alpha(r.png);
+    png_set_interlace_handling(r.png);
+    png_read_update_info(r.png, r.info);
+    w = png_get_image_width(r.png, r.info);
+    h = png_get_image_height(r.png, r.info);
+    bits = png_get_bit_depth(r.png, r.info);
+    rowbytes = png_get_rowbytes(r.png, r.info);
+    return true;
+}
+
+/// Reads every row (rows[] prepared by the caller); false on error.
+bool read_png_rows(PngReader& r, png_bytepp rows) {
+    if (setjmp(png_jmpbuf(r.png))) return false;
+    png_read_image(r.png, rows);
+    png_read_end(r.png, nullptr);
+    return true;
+}
+
+}  // namespace
+
+std::string encode_png(const Image& img, Encoding e) {
+    // Quantize first: no C++ allocation happens while libpng runs, except in write_bytes.
+    const size_t row_size = static_cast<size_t>(img.width) * 3;
+    std::vector<png_byte> data(row_size * img.height);
+    std::vector<png_bytep> rows(img.height);
+    for (int y = 0; y < img.height; ++y) {
+        png_bytep row = data.data() + row_size * y;
+        rows[y] = row;
+        for (int x = 0; x < img.width; ++x) {
+            const Rgb& c = img.at(x, y);
+            row[3 * x + 0] = encode_8bit(c.x, e);
+            row[3 * x + 1] = encode_8bit(c.y, e);
+            row[3 * x + 2] = encode_8bit(c.z, e);
+        }
+    }
+    std::string out;
+    out.reserve(data.size() / 2 + 1024);
+    PngContext ctx;
+    ctx.out = &out;
+    if (!run_png_writer(ctx, static_cast<png_uint_32>(img.width),
+                        static_cast<png_uint_32>(img.height), rows.data(), e == Encoding::srgb)) {
+        throw ImageError(std::string("PNG encoding failed: ") + ctx.message);
+    }
+    return out;
+}
+
+Image decode_png(std::string_view bytes) {
+    if (bytes.size() < 8 || png_sig_cmp(reinterpret_cast<png_const_bytep>(bytes.data()), 0, 8)) {
+        throw ImageError("not a PNG file");
+    }
+    PngReader r;
+    r.ctx.in = bytes;
+    r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &r.ctx, on_error, on_warning);
+    if (r.png == nullptr) throw ImageError("cannot initialise libpng");
+    r.info = png_create_info_struct(r.png);
+    if (r.info == nullptr) throw ImageError("cannot initialise libpng");
+
+    png_uint_32 w = 0, h = 0;
+    int bits = 0;
+    size_t rowbytes = 0;
+    if (!read_png_header(r, w, h, bits, rowbytes)) {
+        throw ImageError(std::string("invalid PNG: ") + r.ctx.message);
+    }
+    const size_t bytes_per_sample = bits == 16 ? 2 : 1;
+    if ((bits != 8 && bits != 16) || rowbytes != static_cast<size_t>(w) * 3 * bytes_per_sample ||
+        w > static_cast<png_uint_32>(std::numeric_limits<int>::max()) ||
+        h > static_cast<png_uint_32>(std::numeric_limits<int>::max())) {
+        throw ImageError("unsupported PNG layout");
+    }
+
+    std::vector<png_byte> data(rowbytes * h);
+    std::vector<png_bytep> rows(h);
+    for (png_uint_32 y = 0; y < h; ++y) rows[y] = data.data() + rowbytes * y;
+    if (!read_png_rows(r, rows.data())) {
+        throw ImageError(std::string("invalid PNG: ") + r.ctx.message);
+    }
+
+    // Samples become v / (2^bits − 1); 16-bit samples are big-endian.
+    Image img(static_cast<int>(w), static_cast<int>(h));
+    const size_t count = img.pixels.size();
+    if (bits == 8) {
+        for (size_t i = 0; i < count; ++i) {
+            const png_byte* s = data.data() + 3 * i;
+            img.pixels[i] = Rgb{s[0] / 255.0f, s[1] / 255.0f, s[2] / 255.0f};
+        }
+    } else {
+        const auto sample = [](const png_byte* s) {
+            return static_cast<float>((static_cast<unsigned>(s[0]) << 8) | s[1]) / 65535.0f;
+        };
+        for (size_t i = 0; i < count; ++i) {
+            const png_byte* s = data.data() + 6 * i;
+            img.pixels[i] = Rgb{sample(s), sample(s + 2), sample(s + 4)};
+        }
+    }
+    return img;
+}
+
+}  // namespace luz
