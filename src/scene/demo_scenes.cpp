@@ -1,0 +1,62 @@
+// The built-in scenes (demo:NAME), kept as JSON text so they read like scene files.
+// To add one, write its JSON as a raw string below and add a row to kDemos.
+#include "scene/demo_scenes.h"
+
+namespace luz {
+namespace {
+
+// The practical assignment: sphere, cube, cylinder, cone and torus on a floor, orthographic,
+// zbuffer, phong. Exposure by hand (SPEC §1 model 2, K = 1): the key light is ~10–11 units
+// from the shapes, so Il/(d+K) ≈ 10/11 ≈ 0.9; the fill gives ≈ 4/12 ≈ 0.33. A surface facing
+// the key gets about 0.9·Kd + Ka (0.75 → 0.79), the tops of the shapes ≈ 0.65·Kd + Ka, so the
+// shapes average ≈ 0.3 and only specular highlights reach 1.
+constexpr std::string_view kPrimitives = R"json({
+  "image":  { "width": 800, "height": 600, "background": [0.05, 0.05, 0.08] },
+  "camera": { "projection": "orthographic", "position": [0, 4, 10], "look_at": [0, 0.6, 0],
+              "up": [0, 1, 0], "view_height": 5.5 },
+  "render": { "pipeline": "zbuffer", "model": "phong", "tessellation": 64 },
+  "ambient": 1.0,
+  "attenuation_k": 1.0,
+  "lights": [
+    { "position": [-5, 8, 7], "intensity": 10 },
+    { "position": [6, 4, 8],  "intensity": 4 }
+  ],
+  "materials": {
+    "floor":  { "ka": [0.08, 0.08, 0.08], "kd": [0.55, 0.55, 0.55], "ks": 0.05, "n": 4,
+                "checker": { "size": 1, "ka": [0.05, 0.05, 0.055], "kd": [0.36, 0.36, 0.4] } },
+    "blue":   { "ka": [0.02, 0.045, 0.11], "kd": [0.15, 0.3, 0.75], "ks": 0.5, "n": 30 },
+    "yellow": { "ka": [0.11, 0.09, 0.02], "kd": [0.75, 0.6, 0.15], "ks": 0.4, "n": 25 },
+    "jade":   { "ka": [0.02, 0.09, 0.045], "kd": [0.15, 0.6, 0.3], "ks": 0.5, "n": 50 }
+  },
+  "objects": [
+    { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "floor" },
+    { "type": "sphere", "center": [-2.9, 0.55, 0], "radius": 0.55, "material": "plastico" },
+    { "type": "box", "min": [-0.45, 0, -0.45], "max": [0.45, 0.9, 0.45], "material": "madeira",
+      "transform": { "rotate": [0, 30, 0], "translate": [-1.45, 0, 0] } },
+    { "type": "cylinder", "base": [0, 0, 0], "axis": [0, 1, 0], "radius": 0.45, "height": 1.1,
+      "caps": true, "material": "blue" },
+    { "type": "cone", "base": [1.45, 0, 0], "axis": [0, 1, 0], "radius": 0.5, "height": 1.2,
+      "cap": true, "material": "yellow" },
+    { "type": "torus", "center": [2.9, 0.47, 0], "axis": [0, 1, 1], "major_radius": 0.45,
+      "minor_radius": 0.15, "material": "jade" }
+  ]
+})json";
+
+constexpr DemoScene kDemos[] = {
+    {"primitives",
+     "the practical assignment: sphere, cube, cylinder, cone and torus on a floor (zbuffer)",
+     kPrimitives},
+};
+
+}  // namespace
+
+std::span<const DemoScene> demo_scenes() { return kDemos; }
+
+const DemoScene* find_demo(std::string_view name) {
+    for (const DemoScene& d : kDemos) {
+        if (d.name == name) return &d;
+    }
+    return nullptr;
+}
+
+}  // namespace luz

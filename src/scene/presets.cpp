@@ -1,0 +1,59 @@
+// The eight material presets of the lecture (SPEC §2), tuned for `phong` with Il/(d+K) ≈ 1:
+// diffuse surfaces (cortiça, gesso, …) versus specular ones (polished metal, still water, …).
+#include "scene/presets.h"
+
+#include <array>
+
+namespace luz {
+namespace {
+
+/// A preset material: Ka is a dim version of Kd (ka_scale·Kd), the rest as given.
+Material make(std::string_view name, Rgb kd, float ka_scale, float ks, float n,
+              float reflection = 0.0f, float transparency = 0.0f, float ior = 1.0f) {
+    Material m;
+    m.name = std::string(name);
+    m.kd = kd;
+    m.ka = kd * ka_scale;
+    m.ks = Rgb(ks);
+    m.n = n;
+    m.reflection = reflection;
+    m.transparency = transparency;
+    m.ior = ior;
+    return m;
+}
+
+const std::array<Preset, 8>& table() {
+    static const std::array<Preset, 8> presets_ = {{
+        {"gesso", "plaster", "matte near-white plaster: all diffuse, no highlight",
+         make("gesso", {0.80f, 0.79f, 0.76f}, 0.15f, 0.0f, 2.0f)},
+        {"madeira", "wood", "warm brown wood: diffuse with a faint broad sheen",
+         make("madeira", {0.55f, 0.34f, 0.17f}, 0.15f, 0.15f, 10.0f)},
+        {"concreto", "concrete", "mid-grey concrete: rough, almost no highlight",
+         make("concreto", {0.50f, 0.50f, 0.48f}, 0.15f, 0.05f, 4.0f)},
+        {"cortica", "cork", "tan cork: soft, diffuse, no visible highlight",
+         make("cortica", {0.62f, 0.46f, 0.30f}, 0.15f, 0.02f, 3.0f)},
+        {"plastico", "plastic", "saturated red plastic: coloured diffuse, sharp white highlight",
+         make("plastico", {0.75f, 0.08f, 0.06f}, 0.15f, 0.6f, 40.0f)},
+        {"metal_polido", "polished_metal", "polished metal: dark diffuse, tight highlight, mirror",
+         make("metal_polido", {0.15f, 0.15f, 0.16f}, 0.2f, 0.9f, 200.0f, 0.7f)},
+        {"agua", "still_water",
+         "still water: faint blue tint, very sharp highlight, transparent (ior 1.33)",
+         make("agua", {0.03f, 0.08f, 0.12f}, 0.2f, 0.8f, 300.0f, 0.2f, 0.8f, 1.33f)},
+        {"vidro", "glass", "clear glass: almost no diffuse, sharp highlight, refracts (ior 1.5)",
+         make("vidro", {0.02f, 0.02f, 0.02f}, 0.2f, 0.9f, 500.0f, 0.1f, 0.9f, 1.5f)},
+    }};
+    return presets_;
+}
+
+}  // namespace
+
+std::span<const Preset> presets() { return table(); }
+
+const Preset* find_preset(std::string_view name) {
+    for (const Preset& p : table()) {
+        if (p.name == name || p.alias == name) return &p;
+    }
+    return nullptr;
+}
+
+}  // namespace luz
