@@ -313,16 +313,47 @@ void shade_tile(const Frame& f, int x0, int y0, int w, int h, const Fragment* fr
     }
 }
 
-/// Size of a square quad that stands for an unbounded plane: far beyond everything in view.
-float plane_extent(const Scene& scene) {
+/// The scene's size: the diagonal of everything bounded, the camera and what it looks at.
+float scene_size(const Scene& scene) {
     Bounds3 b;
     for (const Shape& s : scene.shapes)
         if (is_bounded(s)) b.expand(bounds(s));
     const CameraDesc& c = scene.desc.camera;
     b.expand(c.position);
     b.expand(c.look_at);
-    const float size = length(b.extent()) + c.view_height;
-    return 1000.0f * std::max(size, 1.0f);
+    return std::max(length(b.extent()) + c.view_height, 1.0f);
+}
+
+/// An unbounded plane as a square far larger than the scene, centred at the camera's foot
+/// on the plane, made of a grid whose cells double in size away from the centre: every point
+/// is interpolated from nearby vertices, so positions (and checker cells) stay precise.
+void append_plane(const Scene& scene, const Shape& s, TriangleMesh& mesh) {
+    const float size = scene_size(scene);
+    const Vec3 o = s.transform.point({0, 0, 0});
+    const Vec3 n = normalize(s.transform.normal({0, 0, 1}));
+    const Vec3 eye = scene.desc.camera.position;
+    const Vec3 foot = eye - n * dot(eye - o, n);
+    Vec3 u, v;
+    orthonormal_basis(n, u, v);
+    std::vector<float> coords{0.0f};
+    for (float c = size / 16; c < 1000 * size; c *= 2) {
+        coords.push_back(c);
+        coords.insert(coords.begin(), -c);
+    }
+    const auto k = static_cast<uint32_t>(coords.size());
+    const auto base = static_cast<uint32_t>(mesh.positions.size());
+    for (float cv : coords) {
+        for (float cu : coords) {
+            mesh.positions.push_back(foot + u * cu + v * cv);
+            mesh.normals.push_back(n);
+        }
+    }
+    for (uint32_t j = 0; j + 1 < k; ++j) {
+        for (uint32_t i = 0; i + 1 < k; ++i) {
+            const uint32_t a = base + j * k + i, b = a + 1, c = a + k + 1, d = a + k;
+            for (uint32_t index : {a, b, c, a, c, d}) mesh.indices.push_back(index);
+        }
+    }
 }
 
 void append_triangles_from(size_t first_index, int32_t material, ZbufferGeometry& g) {
@@ -346,23 +377,7 @@ ZbufferGeometry prepare_zbuffer(const Scene& scene) {
     for (const Shape& s : scene.shapes) {
         const size_t first = g.mesh.indices.size();
         if (s.type == ShapeType::plane) {
-            // An unbounded plane as a large quad around the camera's foot on it; the
-            // rasterizer clips it to the view.
-            const float r = plane_extent(scene);
-            const Vec3 o = s.transform.point({0, 0, 0});
-            const Vec3 n = normalize(s.transform.normal({0, 0, 1}));
-            const Vec3 foot = scene.desc.camera.position -
-                              n * dot(scene.desc.camera.position - o, n);
-            Vec3 u, v;
-            orthonormal_basis(n, u, v);
-            const auto base = static_cast<uint32_t>(g.mesh.positions.size());
-            const Vec3 corners[4] = {foot - u * r - v * r, foot + u * r - v * r,
-                                     foot + u * r + v * r, foot - u * r + v * r};
-            for (const Vec3& c : corners) {
-                g.mesh.positions.push_back(c);
-                g.mesh.normals.push_back(n);
-            }
-            for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) g.mesh.indices.push_back(base + i);
+            append_plane(scene, s, g.mesh);
         } else {
             tessellate(s, level, g.mesh);
         }
