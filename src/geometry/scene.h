@@ -9,8 +9,9 @@
 namespace luz {
 
 struct Scene {
-    SceneDesc desc;             ///< settings, lights, materials
-    std::vector<Shape> shapes;  ///< one per object, in the scene's order
+    SceneDesc desc;               ///< settings, lights, materials
+    std::vector<Shape> shapes;    ///< one per object, in the scene's order
+    std::vector<Bounds3> bounds;  ///< world bounds of each shape (infinite for planes)
 };
 
 /// Builds the runtime scene from a validated description.

@@ -2,9 +2,9 @@
 #include "render/render.h"
 
 #include <chrono>
-#include <stdexcept>
 
 #include "render/parallel.h"
+#include "render/ray_tracer.h"
 #include "render/zbuffer.h"
 
 namespace luz {
@@ -24,7 +24,8 @@ Image render(const Scene& scene, const RenderControl& control, RenderStats& stat
         }
         case Pipeline::raycast:
         case Pipeline::raytrace:
-            throw std::runtime_error("the raycast and raytrace pipelines are not available yet");
+            render_ray_traced(scene, control, out, stats);
+            break;
     }
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;

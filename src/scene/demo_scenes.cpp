@@ -42,10 +42,40 @@ constexpr std::string_view kPrimitives = R"json({
   ]
 })json";
 
+
+// Whitted's classic picture: a mirror sphere and a glass sphere over a red and yellow
+// checkered floor, two lights, perspective, ray traced to depth 5. The key light is ~8 units
+// from the spheres (Il/(d+K) ≈ 12/9 ≈ 1.3 on Kd ≈ 0.5–0.8); the sky-blue background is what
+// the mirror and the glass mostly show.
+constexpr std::string_view kWhitted = R"json({
+  "image":  { "width": 800, "height": 600, "background": [0.35, 0.55, 0.85] },
+  "camera": { "projection": "perspective", "position": [0, 1.7, 7], "look_at": [0, 0.9, 0],
+              "up": [0, 1, 0], "fov_y": 40 },
+  "render": { "pipeline": "raytrace", "model": "phong", "max_depth": 5 },
+  "ambient": 1.0,
+  "attenuation_k": 1.0,
+  "lights": [
+    { "position": [-4, 6, 5], "intensity": 11 },
+    { "position": [5, 4, 2],  "intensity": 5 }
+  ],
+  "materials": {
+    "floor":  { "ka": [0.1, 0.09, 0.02], "kd": [0.85, 0.75, 0.15], "ks": 0, "n": 1,
+                "checker": { "size": 1, "ka": [0.1, 0.02, 0.015], "kd": [0.8, 0.12, 0.08] } },
+    "mirror": { "preset": "metal_polido", "reflection": 0.8 },
+    "glass":  { "preset": "vidro" }
+  },
+  "objects": [
+    { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "floor" },
+    { "type": "sphere", "center": [-0.9, 1.0, -1.0], "radius": 1.0, "material": "mirror" },
+    { "type": "sphere", "center": [0.9, 0.75, 1.0], "radius": 0.75, "material": "glass" }
+  ]
+})json";
+
 constexpr DemoScene kDemos[] = {
     {"primitives",
      "the practical assignment: sphere, cube, cylinder, cone and torus on a floor (zbuffer)",
      kPrimitives},
+    {"whitted", "Whitted's mirror and glass spheres over a checkered floor (raytrace)", kWhitted},
 };
 
 }  // namespace

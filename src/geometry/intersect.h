@@ -1,0 +1,62 @@
+// Ray–shape intersection for the ray tracer (SPEC §1.1): the nearest hit of a ray with one
+// shape in its canonical object space (shape.h), and the surface data at that hit.
+#pragma once
+
+#include "geometry/shape.h"
+#include "math/ray.h"
+#include "math/vec3.h"
+
+namespace luz {
+
+/// Which surface of a shape a hit lies on (Hit::part).
+enum HitPart : int {
+    part_side = 0,  ///< sphere, torus, plane, triangle, the side of a cylinder or cone
+    part_cap0 = 1,  ///< cylinder and cone: the disc at z = 0
+    part_cap1 = 2,  ///< cylinder: the disc at z = 1
+    // box: part = 2·axis + (1 on the hi face, 0 on the lo face), i.e. 0 … 5
+};
+
+/// A ray–shape hit: cheap, plain, filled for every candidate; shading data comes later from
+/// surface_at() for the nearest hit only.
+struct Hit {
+    float t = 0;     ///< ray parameter: world point = r.origin + t·r.direction
+    int shape = -1;  ///< index of the shape in its scene; intersect() leaves it to the caller
+    /// Surface coordinates: triangle barycentrics of vertices 1 and 2 (P = (1−u−v)·v0 + u·v1 +
+    /// v·v2); sphere (φ/2π, θ/π); cylinder and cone side (φ/2π, z), caps ((x+1)/2, (y+1)/2);
+    /// torus (φ/2π around the axis, ψ/2π around the tube); box face coordinates in [0, 1];
+    /// plane object (x, y). φ = atan2(y, x) ∈ [0, 2π), all in object space.
+    float u = 0, v = 0;
+    int part = part_side;  ///< HitPart, or the box face
+};
+
+/// Nearest hit of world ray r with shape s in the open interval (t_min, t_max). The ray is
+/// moved into object space (transform.to_object, direction not normalised), so t is the same
+/// in both spaces. Valid for rays starting inside the shape (refraction). Meshes are not
+/// handled here (their triangles go through intersect_triangle()); they give false.
+bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit);
+
+/// Surface data at a hit: world position, unit outward shading normal (object normal by the
+/// inverse transpose, normalised), unit outward geometric normal. For triangles both are the
+/// winding normal (v1 − v0) × (v2 − v0); two-sided shading flips them later (SPEC §1.3).
+struct SurfacePoint {
+    Vec3 P, N, Ng;
+};
+SurfacePoint surface_at(const Shape& s, const Ray& r, const Hit& hit);
+
+/// A ray prepared once for the watertight ray–triangle test of Woop, Benthin and Wald (JCGT
+/// 2013): the dominant axis kz of the direction, and the shear that maps the ray onto +z.
+struct WatertightRay {
+    Vec3 origin;
+    int kx = 0, ky = 1, kz = 2;
+    float Sx = 0, Sy = 0, Sz = 1;
+};
+/// Prepares ray r (any non-zero direction) for intersect_triangle().
+WatertightRay prepare_watertight(const Ray& r);
+
+/// Watertight ray–triangle test: hit in (t_min, t_max) at t with barycentrics b1, b2 of p1,
+/// p2. Rays through an edge or vertex shared by several triangles (same float vertices) hit
+/// at least one of them. Both sides count.
+bool intersect_triangle(const WatertightRay& r, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                        float t_min, float t_max, float& t, float& b1, float& b2);
+
+}  // namespace luz

@@ -1,0 +1,164 @@
+// trace(ray, depth) exactly as SPEC §1.1, and the tiled, parallel render of ray-traced images.
+#include "render/ray_tracer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+#include "render/parallel.h"
+
+namespace luz {
+
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+constexpr int kTileSize = 16;
+
+/// Ray–sphere hit in (0, t_max) for a light sphere (centre c, radius r), nearest first.
+bool hit_light_sphere(const Ray& ray, const Vec3& c, float r, float& t) {
+    const Vec3 oc = ray.origin - c;
+    const float b = dot(oc, ray.direction);
+    const float cc = dot(oc, oc) - r * r;
+    const float disc = b * b - cc;
+    if (disc < 0) return false;
+    const float s = std::sqrt(disc);
+    const float t0 = -b - s, t1 = -b + s;
+    if (t0 > 0) {
+        t = t0;
+        return true;
+    }
+    if (t1 > 0) {
+        t = t1;
+        return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+bool refract(const Vec3& D, const Vec3& N, float n1, float n2, Vec3& T) {
+    const float eta = n1 / n2;
+    const float cos_i = -dot(D, N);
+    const float k = 1 - eta * eta * (1 - cos_i * cos_i);  // cos² r
+    if (k < 0) return false;                              // total internal reflection
+    T = normalize(D * eta + N * (eta * cos_i - std::sqrt(k)));
+    return true;
+}
+
+RayTracer::RayTracer(const Scene& scene, bool full)
+    : scene_(scene),
+      camera_(Camera::from(scene.desc.camera, scene.desc.image.width, scene.desc.image.height)),
+      lighting_{scene.desc.render.model, scene.desc.ambient, scene.desc.attenuation_k,
+                scene.desc.lights},
+      max_depth_(full ? scene.desc.render.max_depth : 0),
+      full_(full),
+      tree_attenuation_(scene.desc.render.tree_attenuation) {}
+
+int RayTracer::nearest_light(const Ray& ray, float& t_max, TraceCounters& counters) const {
+    int nearest = -1;
+    const auto& lights = scene_.desc.lights;
+    for (size_t j = 0; j < lights.size(); ++j) {
+        if (lights[j].radius <= 0) continue;
+        ++counters.tests.primitive;
+        float t;
+        if (hit_light_sphere(ray, lights[j].position, lights[j].radius, t) && t < t_max) {
+            t_max = t;
+            nearest = static_cast<int>(j);
+        }
+    }
+    return nearest;
+}
+
+Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& distance) const {
+    const SceneDesc& desc = scene_.desc;
+    // Nearest hit among objects and visible lights.
+    float t_max = kInfinity;
+    Hit hit;
+    const bool hit_object = nearest_hit(scene_, ray, 0.0f, t_max, hit, counters.tests);
+    if (hit_object) t_max = hit.t;
+    const int light = nearest_light(ray, t_max, counters);
+    distance = t_max;
+    if (light >= 0) return clamp01(desc.lights[light].intensity);
+    if (!hit_object) return desc.image.background;
+
+    // The local model at P, with S = −ray.direction and shadow rays (raytrace).
+    const Shape& shape = scene_.shapes[hit.shape];
+    const Material& m = desc.materials[shape.material];
+    const SurfacePoint sp = surface_at(shape, ray, hit);
+    const Vec3 D = ray.direction;
+    const ShadingPoint p{sp.P, sp.N, sp.Ng, -D, &m};
+    Rgb c;
+    if (full_) {
+        auto visibility = [&](size_t, const Vec3& P, const Vec3& L, float d) {
+            ++counters.shadow;
+            const Ray shadow = spawn_ray(P, sp.Ng, L);
+            return transmittance(scene_, shadow, 0.0f, length(P + L * d - shadow.origin),
+                                 counters.tests);
+        };
+        c = shade(p, lighting_, visibility);
+    } else {
+        c = shade(p, lighting_, AllVisible{});
+    }
+    if (depth >= max_depth_ || (m.reflection <= 0 && m.transparency <= 0)) return c;
+
+    // The normal facing the incoming ray (two-sided), and whether the ray enters the object.
+    const bool entering = dot(D, sp.Ng) < 0;
+    const Vec3 N = dot(D, sp.N) < 0 ? sp.N : -sp.N;
+    const float K = desc.attenuation_k;
+    // A = 1, or 1/(d+K) for the secondary segment's length d (SPEC §1.1: tree_attenuation).
+    auto secondary = [&](const Ray& r, uint64_t& count) {
+        ++count;
+        float d;
+        const Rgb s = trace(r, depth + 1, counters, d);
+        if (!tree_attenuation_) return s;
+        return std::isinf(d) ? Rgb{0.0f} : s * (1.0f / (d + K));
+    };
+    const Vec3 R = reflect(D, N);
+    if (m.reflection > 0) c += secondary(spawn_ray(sp.P, sp.Ng, R), counters.reflection) * m.reflection;
+    if (m.transparency > 0) {
+        // Entering: n1 = 1, n2 = ior; leaving: n1 = ior, n2 = 1 (the medium around is 1.0).
+        const float n1 = entering ? 1.0f : m.ior, n2 = entering ? m.ior : 1.0f;
+        Vec3 T;
+        const Vec3 dir = refract(D, N, n1, n2, T) ? T : R;  // total internal reflection: R
+        c += secondary(spawn_ray(sp.P, sp.Ng, dir), counters.refraction) * m.transparency;
+    }
+    return c;
+}
+
+Rgb RayTracer::sample(float px, float py, TraceCounters& counters) const {
+    ++counters.primary;
+    float distance;
+    return trace(camera_.ray(px, py), 0, counters, distance);
+}
+
+void render_ray_traced(const Scene& scene, const RenderControl& control, Image& out,
+                       RenderStats& stats) {
+    const RayTracer tracer(scene, scene.desc.render.pipeline == Pipeline::raytrace);
+    const int w = scene.desc.image.width, h = scene.desc.image.height;
+    const int tiles_x = (w + kTileSize - 1) / kTileSize, tiles_y = (h + kTileSize - 1) / kTileSize;
+    const size_t tile_count = static_cast<size_t>(tiles_x) * tiles_y;
+    std::vector<TraceCounters> counters(tile_count);
+    std::atomic<size_t> done{0};
+    parallel_items(control.threads, tile_count, [&](size_t t) {
+        if (control.cancel && control.cancel->load(std::memory_order_relaxed)) return;
+        const int x0 = static_cast<int>(t % tiles_x) * kTileSize;
+        const int y0 = static_cast<int>(t / tiles_x) * kTileSize;
+        TraceCounters& c = counters[t];
+        for (int y = y0; y < std::min(h, y0 + kTileSize); ++y)
+            for (int x = x0; x < std::min(w, x0 + kTileSize); ++x)
+                out.at(x, y) = tracer.sample(x + 0.5f, y + 0.5f, c);
+        if (control.progress) control.progress(static_cast<double>(++done) / tile_count);
+    });
+    for (const TraceCounters& c : counters) {
+        stats.rays_primary += c.primary;
+        stats.rays_shadow += c.shadow;
+        stats.rays_reflection += c.reflection;
+        stats.rays_refraction += c.refraction;
+        stats.tests_primitive += c.tests.primitive;
+        stats.tests_bounds += c.tests.bounds;
+    }
+    stats.samples += stats.rays_primary;
+}
+
+}  // namespace luz

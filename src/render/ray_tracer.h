@@ -1,0 +1,72 @@
+// The ray tracer of SPEC §1.1: trace(ray, depth) with shadow rays, mirror reflection and
+// refraction by Snell's law; raycast is the same code with depth 0 and no shadow rays.
+#pragma once
+
+#include <cstdint>
+
+#include "geometry/scene.h"
+#include "geometry/scene_query.h"
+#include "image/image.h"
+#include "render/render.h"
+#include "render/stats.h"
+#include "scene/camera.h"
+#include "shading/shade.h"
+
+namespace luz {
+
+/// Rays traced and intersection tests, counted per thread and summed at the end.
+struct TraceCounters {
+    uint64_t primary = 0, shadow = 0, reflection = 0, refraction = 0;
+    IntersectCounters tests;
+};
+
+/// Offset of secondary and shadow ray origins along the geometric normal (SPEC §1.1: ≤ 1e-4).
+inline constexpr float kRayEpsilon = 1e-4f;
+
+/// A ray leaving surface point P in direction `dir`, its origin moved by kRayEpsilon along the
+/// geometric normal Ng to the side the ray leaves towards (SPEC §1.1), so that a surface never
+/// shadows or reflects itself by rounding.
+inline Ray spawn_ray(const Vec3& P, const Vec3& Ng, const Vec3& dir) {
+    return {P + Ng * (dot(dir, Ng) > 0 ? kRayEpsilon : -kRayEpsilon), dir};
+}
+
+/// Mirror direction of unit direction D about unit normal N.
+inline Vec3 reflect(const Vec3& D, const Vec3& N) { return D - N * (2 * dot(D, N)); }
+
+/// Refraction of unit direction D at a surface with unit normal N facing D's side
+/// (dot(D, N) < 0), from index n1 into n2: n1·sin i = n2·sin r. False on total internal
+/// reflection.
+bool refract(const Vec3& D, const Vec3& N, float n1, float n2, Vec3& T);
+
+class RayTracer {
+public:
+    /// `full`: raytrace (shadow rays, reflection, refraction up to max_depth); otherwise
+    /// raycast (the local model with every light visible, no secondary rays).
+    RayTracer(const Scene& scene, bool full);
+
+    /// The colour seen along `ray` at ray-tree depth `depth` (SPEC §1.1). `distance` receives
+    /// the distance to what the ray hit (infinity on a miss).
+    Rgb trace(const Ray& ray, int depth, TraceCounters& counters, float& distance) const;
+
+    /// The colour at pixel-space point (px, py): one primary ray.
+    Rgb sample(float px, float py, TraceCounters& counters) const;
+
+    const Camera& camera() const { return camera_; }
+
+private:
+    /// The nearest visible light sphere along ray within (0, t_max), or −1.
+    int nearest_light(const Ray& ray, float& t_max, TraceCounters& counters) const;
+
+    const Scene& scene_;
+    Camera camera_;
+    Lighting lighting_;
+    int max_depth_;
+    bool full_;
+    bool tree_attenuation_;
+};
+
+/// Renders the scene with the raycast or raytrace pipeline into `out`.
+void render_ray_traced(const Scene& scene, const RenderControl& control, Image& out,
+                       RenderStats& stats);
+
+}  // namespace luz
