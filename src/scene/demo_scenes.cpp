@@ -45,7 +45,7 @@ constexpr std::string_view kPrimitives = R"json({
 
 // Whitted's classic picture: a mirror sphere and a glass sphere over a red and yellow
 // checkered floor, two lights, perspective, ray traced to depth 5. The key light is ~8 units
-// from the spheres (Il/(d+K) ≈ 12/9 ≈ 1.3 on Kd ≈ 0.5–0.8); the sky-blue background is what
+// from the spheres (Il/(d+K) ≈ 7/9 ≈ 0.8 on Kd ≈ 0.8); the sky-blue background is what
 // the mirror and the glass mostly show.
 constexpr std::string_view kWhitted = R"json({
   "image":  { "width": 800, "height": 600, "background": [0.35, 0.55, 0.85] },
@@ -55,8 +55,8 @@ constexpr std::string_view kWhitted = R"json({
   "ambient": 1.0,
   "attenuation_k": 1.0,
   "lights": [
-    { "position": [-4, 6, 5], "intensity": 11 },
-    { "position": [5, 4, 2],  "intensity": 5 }
+    { "position": [-4, 6, 5], "intensity": 7 },
+    { "position": [5, 4, 2],  "intensity": 2.5 }
   ],
   "materials": {
     "floor":  { "ka": [0.1, 0.09, 0.02], "kd": [0.85, 0.75, 0.15], "ks": 0, "n": 1,
