@@ -71,11 +71,43 @@ constexpr std::string_view kWhitted = R"json({
   ]
 })json";
 
+// The eight presets side by side, as spheres in two rows over a grey floor, ray traced so the
+// metal reflects and the water and glass refract: the picture behind `luz materials`.
+constexpr std::string_view kMaterials = R"json({
+  "image":  { "width": 800, "height": 400, "background": [0.3, 0.4, 0.55] },
+  "camera": { "projection": "perspective", "position": [0, 5, 8.5], "look_at": [0, 0.4, 0.1],
+              "up": [0, 1, 0], "fov_y": 32 },
+  "render": { "pipeline": "raytrace", "model": "phong", "max_depth": 5 },
+  "lights": [
+    { "position": [-5, 7, 6], "intensity": 8 },
+    { "position": [6, 5, 4],  "intensity": 3 }
+  ],
+  "materials": {
+    "floor": { "ka": 0.06, "kd": 0.5, "ks": 0, "n": 1,
+               "checker": { "size": 1, "ka": 0.04, "kd": 0.35 } }
+  },
+  "objects": [
+    { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "floor" },
+    { "type": "sphere", "center": [-3.3, 0.7, -1.5], "radius": 0.7, "material": "gesso" },
+    { "type": "sphere", "center": [-1.1, 0.7, -1.5], "radius": 0.7, "material": "madeira" },
+    { "type": "sphere", "center": [1.1, 0.7, -1.5], "radius": 0.7, "material": "concreto" },
+    { "type": "sphere", "center": [3.3, 0.7, -1.5], "radius": 0.7, "material": "cortica" },
+    { "type": "sphere", "center": [-3.3, 0.7, 1.3], "radius": 0.7, "material": "plastico" },
+    { "type": "sphere", "center": [-1.1, 0.7, 1.3], "radius": 0.7, "material": "metal_polido" },
+    { "type": "sphere", "center": [1.1, 0.7, 1.3], "radius": 0.7, "material": "agua" },
+    { "type": "sphere", "center": [3.3, 0.7, 1.3], "radius": 0.7, "material": "vidro" }
+  ]
+})json";
+
 constexpr DemoScene kDemos[] = {
     {"primitives",
      "the practical assignment: sphere, cube, cylinder, cone and torus on a floor (zbuffer)",
      kPrimitives},
     {"whitted", "Whitted's mirror and glass spheres over a checkered floor (raytrace)", kWhitted},
+    {"materials",
+     "the eight presets as spheres: gesso, madeira, concreto, cortica (back); plastico, "
+     "metal_polido, agua, vidro (front) (raytrace)",
+     kMaterials},
 };
 
 }  // namespace
