@@ -12,8 +12,6 @@ namespace luz {
 
 namespace {
 
-constexpr double two_pi = 2.0 * std::numbers::pi;
-
 /// A double-precision point or vector for the solvers (object space).
 struct D3 {
     double x, y, z;
@@ -22,13 +20,6 @@ inline D3 to_d3(const Vec3& v) { return {v.x, v.y, v.z}; }
 inline double dot3(const D3& a, const D3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 inline D3 along(const D3& o, const D3& d, double t) {
     return {o.x + t * d.x, o.y + t * d.y, o.z + t * d.z};
-}
-
-/// φ/2π ∈ [0, 1) for φ = atan2(y, x).
-inline float turn(double y, double x) {
-    double phi = std::atan2(y, x);
-    if (phi < 0) phi += two_pi;
-    return static_cast<float>(phi / two_pi);
 }
 
 /// The nearest accepted candidate so far. A candidate root t (double) is accepted if, rounded
@@ -352,51 +343,28 @@ bool intersect_triangle(const WatertightRay& r, const Vec3& p0, const Vec3& p1, 
 bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit) {
     const Ray ro = s.transform.to_object(r);
     Nearest n{t_min, t_max};
+    hit.u = hit.v = 0;
     switch (s.type) {
-        case ShapeType::sphere: {
+        case ShapeType::sphere:
             if (!hit_sphere(ro, n)) return false;
-            const D3 p = along(to_d3(ro.origin), to_d3(ro.direction), n.t);
-            const double len = std::sqrt(dot3(p, p));
-            hit.u = turn(p.y, p.x);
-            hit.v = static_cast<float>(std::acos(std::fmax(-1.0, std::fmin(1.0, p.z / len))) /
-                                       std::numbers::pi);
             break;
-        }
-        case ShapeType::box: {
+        case ShapeType::box:
             if (!hit_box(s, ro, n)) return false;
-            const Vec3 p = ro.at(n.best);
-            const int k = n.part / 2, i = (k + 1) % 3, j = (k + 2) % 3;
-            hit.u = (p[i] - s.lo[i]) / (s.hi[i] - s.lo[i]);
-            hit.v = (p[j] - s.lo[j]) / (s.hi[j] - s.lo[j]);
             break;
-        }
         case ShapeType::cylinder:
-        case ShapeType::cone: {
-            if (!(s.type == ShapeType::cylinder ? hit_cylinder(s, ro, n) : hit_cone(s, ro, n)))
-                return false;
-            const D3 p = along(to_d3(ro.origin), to_d3(ro.direction), n.t);
-            if (n.part == part_side) {
-                hit.u = turn(p.y, p.x);
-                hit.v = static_cast<float>(p.z);
-            } else {
-                hit.u = static_cast<float>(0.5 * (p.x + 1));
-                hit.v = static_cast<float>(0.5 * (p.y + 1));
-            }
+            if (!hit_cylinder(s, ro, n)) return false;
             break;
-        }
+        case ShapeType::cone:
+            if (!hit_cone(s, ro, n)) return false;
+            break;
         case ShapeType::torus: {
             D3 p;
             if (!hit_torus(s, ro, n, p)) return false;
-            hit.u = turn(p.y, p.x);
-            hit.v = turn(p.z, std::sqrt(p.x * p.x + p.y * p.y) - 1.0);
             break;
         }
-        case ShapeType::plane: {
+        case ShapeType::plane:
             if (!hit_plane(ro, n)) return false;
-            hit.u = static_cast<float>(ro.origin.x + n.t * ro.direction.x);
-            hit.v = static_cast<float>(ro.origin.y + n.t * ro.direction.y);
             break;
-        }
         case ShapeType::triangle: {
             const WatertightRay w = prepare_watertight(ro);
             float t, b1, b2;

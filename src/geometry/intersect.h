@@ -21,10 +21,8 @@ enum HitPart : int {
 struct Hit {
     float t = 0;     ///< ray parameter: world point = r.origin + t·r.direction
     int shape = -1;  ///< index of the shape in its scene; intersect() leaves it to the caller
-    /// Surface coordinates: triangle barycentrics of vertices 1 and 2 (P = (1−u−v)·v0 + u·v1 +
-    /// v·v2); sphere (φ/2π, θ/π); cylinder and cone side (φ/2π, z), caps ((x+1)/2, (y+1)/2);
-    /// torus (φ/2π around the axis, ψ/2π around the tube); box face coordinates in [0, 1];
-    /// plane object (x, y). φ = atan2(y, x) ∈ [0, 2π), all in object space.
+    /// Triangles: the barycentrics of vertices 1 and 2 (P = (1−u−v)·v0 + u·v1 + v·v2);
+    /// 0 for the other shapes (nothing needs their surface parameters yet).
     float u = 0, v = 0;
     int part = part_side;  ///< HitPart, or the box face
 };

@@ -53,18 +53,20 @@ RayTracer::RayTracer(const Scene& scene, bool full)
                 scene.desc.lights},
       max_depth_(full ? scene.desc.render.max_depth : 0),
       full_(full),
-      tree_attenuation_(scene.desc.render.tree_attenuation) {}
+      tree_attenuation_(scene.desc.render.tree_attenuation) {
+    for (size_t j = 0; j < scene.desc.lights.size(); ++j)
+        if (scene.desc.lights[j].radius > 0) visible_lights_.push_back(static_cast<int>(j));
+}
 
 int RayTracer::nearest_light(const Ray& ray, float& t_max, TraceCounters& counters) const {
     int nearest = -1;
-    const auto& lights = scene_.desc.lights;
-    for (size_t j = 0; j < lights.size(); ++j) {
-        if (lights[j].radius <= 0) continue;
+    for (int j : visible_lights_) {
+        const Light& light = scene_.desc.lights[j];
         ++counters.tests.primitive;
         float t;
-        if (hit_light_sphere(ray, lights[j].position, lights[j].radius, t) && t < t_max) {
+        if (hit_light_sphere(ray, light.position, light.radius, t) && t < t_max) {
             t_max = t;
-            nearest = static_cast<int>(j);
+            nearest = j;
         }
     }
     return nearest;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "geometry/scene.h"
 #include "geometry/scene_query.h"
@@ -58,6 +59,7 @@ private:
     int nearest_light(const Ray& ray, float& t_max, TraceCounters& counters) const;
 
     const Scene& scene_;
+    std::vector<int> visible_lights_;  ///< lights with radius > 0, seen by rays
     Camera camera_;
     Lighting lighting_;
     int max_depth_;
