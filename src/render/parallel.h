@@ -24,9 +24,9 @@ template <class Body>
 void parallel_items(int threads, size_t count, Body&& body) {
     const int n = resolve_threads(threads);
     // Allow more threads than cores when asked for (results do not depend on it).
-    const tbb::global_control allow(tbb::global_control::max_allowed_parallelism,
-                                    std::max<size_t>(static_cast<size_t>(n),
-                                                     std::thread::hardware_concurrency()));
+    const tbb::global_control allow(
+        tbb::global_control::max_allowed_parallelism,
+        std::max<size_t>(static_cast<size_t>(n), std::thread::hardware_concurrency()));
     tbb::task_arena arena(n);
     arena.execute([&] {
         tbb::parallel_for(

@@ -117,7 +117,8 @@ Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& 
         return std::isinf(d) ? Rgb{0.0f} : s * (1.0f / (d + K));
     };
     const Vec3 R = reflect(D, N);
-    if (m.reflection > 0) c += secondary(spawn_ray(sp.P, sp.Ng, R), counters.reflection) * m.reflection;
+    if (m.reflection > 0)
+        c += secondary(spawn_ray(sp.P, sp.Ng, R), counters.reflection) * m.reflection;
     if (m.transparency > 0) {
         // Entering: n1 = 1, n2 = ior; leaving: n1 = ior, n2 = 1 (the medium around is 1.0).
         const float n1 = entering ? 1.0f : m.ior, n2 = entering ? m.ior : 1.0f;

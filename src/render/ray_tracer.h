@@ -40,7 +40,7 @@ inline Vec3 reflect(const Vec3& D, const Vec3& N) { return D - N * (2 * dot(D, N
 bool refract(const Vec3& D, const Vec3& N, float n1, float n2, Vec3& T);
 
 class RayTracer {
-public:
+  public:
     /// `full`: raytrace (shadow rays, reflection, refraction up to max_depth); otherwise
     /// raycast (the local model with every light visible, no secondary rays).
     RayTracer(const Scene& scene, bool full);
@@ -54,7 +54,7 @@ public:
 
     const Camera& camera() const { return camera_; }
 
-private:
+  private:
     /// The nearest visible light sphere along ray within (0, t_max), or −1.
     int nearest_light(const Ray& ray, float& t_max, TraceCounters& counters) const;
 

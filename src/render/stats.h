@@ -12,7 +12,7 @@ struct RenderStats {
     uint64_t tests_primitive = 0, tests_bounds = 0;  ///< intersection tests
     uint64_t pixels_refined = 0;                     ///< adaptive antialiasing
     uint64_t samples = 0;                            ///< colour evaluations
-    uint64_t triangles = 0;  ///< zbuffer: rasterized; raytrace: in meshes
+    uint64_t triangles = 0;                          ///< zbuffer: rasterized; raytrace: in meshes
     uint64_t bvh_nodes = 0;
     uint64_t peak_memory_bytes = 0;
 

@@ -70,11 +70,16 @@ ClipVertex project(const Camera& cam, bool perspective, const Vec3& p) {
 /// 1..4 guard band left, right, bottom, top.
 float plane_distance(const ClipVertex& v, int plane, float near) {
     switch (plane) {
-        case 0: return v.depth - near;
-        case 1: return v.x + kGuardBand * v.w;
-        case 2: return kGuardBand * v.w - v.x;
-        case 3: return v.y + kGuardBand * v.w;
-        default: return kGuardBand * v.w - v.y;
+        case 0:
+            return v.depth - near;
+        case 1:
+            return v.x + kGuardBand * v.w;
+        case 2:
+            return kGuardBand * v.w - v.x;
+        case 3:
+            return v.y + kGuardBand * v.w;
+        default:
+            return kGuardBand * v.w - v.y;
     }
 }
 
@@ -202,10 +207,14 @@ void rasterize(const Frame& f, const RasterTriangle& r, const std::array<Vec3, 3
     // Pixel range of the bounding box within the tile (pixel centres at i + 0.5).
     const int64_t min_x = std::min({x[0], x[1], x[2]}), max_x = std::max({x[0], x[1], x[2]});
     const int64_t min_y = std::min({y[0], y[1], y[2]}), max_y = std::max({y[0], y[1], y[2]});
-    const int px0 = static_cast<int>(std::max<int64_t>(tile_x0, (min_x - half + one - 1) >> kSubpixelBits));
-    const int px1 = static_cast<int>(std::min<int64_t>(tile_x0 + tile_w - 1, (max_x - half) >> kSubpixelBits));
-    const int py0 = static_cast<int>(std::max<int64_t>(tile_y0, (min_y - half + one - 1) >> kSubpixelBits));
-    const int py1 = static_cast<int>(std::min<int64_t>(tile_y0 + tile_h - 1, (max_y - half) >> kSubpixelBits));
+    const int px0 =
+        static_cast<int>(std::max<int64_t>(tile_x0, (min_x - half + one - 1) >> kSubpixelBits));
+    const int px1 =
+        static_cast<int>(std::min<int64_t>(tile_x0 + tile_w - 1, (max_x - half) >> kSubpixelBits));
+    const int py0 =
+        static_cast<int>(std::max<int64_t>(tile_y0, (min_y - half + one - 1) >> kSubpixelBits));
+    const int py1 =
+        static_cast<int>(std::min<int64_t>(tile_y0 + tile_h - 1, (max_y - half) >> kSubpixelBits));
     if (px0 > px1 || py0 > py1) return;
 
     // Edge k is opposite vertex k: E_k(p) = (b − a) × (p − a) for a = v[k+1], b = v[k+2].
@@ -401,10 +410,14 @@ ZbufferGeometry prepare_zbuffer(const Scene& scene) {
 void render_zbuffer(const Scene& scene, const ZbufferGeometry& geometry,
                     const RenderControl& control, Image& out, RenderStats& stats) {
     const ImageDesc& img = scene.desc.image;
-    Frame f{scene, geometry, Camera::from(scene.desc.camera, img.width, img.height),
+    Frame f{scene,
+            geometry,
+            Camera::from(scene.desc.camera, img.width, img.height),
             scene.desc.camera.projection == Projection::perspective,
-            img.width, img.height,
-            (img.width + kTileSize - 1) / kTileSize, (img.height + kTileSize - 1) / kTileSize,
+            img.width,
+            img.height,
+            (img.width + kTileSize - 1) / kTileSize,
+            (img.height + kTileSize - 1) / kTileSize,
             {}};
     if (out.width != img.width || out.height != img.height) out = Image(img.width, img.height);
 

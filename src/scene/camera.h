@@ -15,7 +15,8 @@ struct Camera {
     Vec3 u, v, w;  ///< w = normalize(position − look_at), u = normalize(up × w), v = w × u
     int width = 1, height = 1;
     /// Half extents of the image plane: orthographic in world units
-    /// (view_height·W/H/2, view_height/2); perspective per unit depth (tan(fov_y/2)·W/H, tan(fov_y/2)).
+    /// (view_height·W/H/2, view_height/2); perspective per unit depth (tan(fov_y/2)·W/H,
+    /// tan(fov_y/2)).
     float half_width = 1, half_height = 1;
 
     static Camera from(const CameraDesc& d, int width, int height) {

@@ -42,7 +42,6 @@ constexpr std::string_view kPrimitives = R"json({
   ]
 })json";
 
-
 // Whitted's classic picture: a mirror sphere and a glass sphere over a red and yellow
 // checkered floor, two lights, perspective, ray traced to depth 5. The key light is ~8 units
 // from the spheres (Il/(d+K) ≈ 7/9 ≈ 0.8 on Kd ≈ 0.8); the sky-blue background is what

@@ -96,7 +96,7 @@ struct SceneDesc {
     ImageDesc image;
     CameraDesc camera;
     RenderDesc render;
-    Rgb ambient{1.0f};          ///< Ia
+    Rgb ambient{1.0f};           ///< Ia
     float attenuation_k = 1.0f;  ///< K
     std::vector<Light> lights;
     std::vector<Material> materials;  ///< materials[0] is the default material

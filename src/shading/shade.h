@@ -1,5 +1,6 @@
 // shade(): the illumination models of SPEC §1, the only place they are written.
-// Both pipelines build a ShadingPoint and call it; it returns the colour and, on request, its terms.
+// Both pipelines build a ShadingPoint and call it; it returns the colour and, on request, its
+// terms.
 #pragma once
 
 #include <cmath>
@@ -14,7 +15,7 @@ namespace luz {
 /// What the model needs of the scene: the model, Ia, K and the lights.
 struct Lighting {
     Model model = Model::phong;
-    Rgb Ia{1.0f};   ///< ambient light
+    Rgb Ia{1.0f};    ///< ambient light
     float K = 1.0f;  ///< attenuation constant of Il/(d+K)
     std::span<const Light> lights;
 };
@@ -34,8 +35,8 @@ struct LightTerm {
     float distance = 0;    ///< d_j
     float cos_theta = 0;   ///< max(0, N·L_j)
     float cos_alpha = 0;   ///< max(0, R_j·S), 0 when N·L_j ≤ 0
-    Rgb diffuse;           ///< vis_j·Il_j·Kd·cosθ_j (lambert) or vis_j·Il_j/(d_j+K)·Kd·cosθ_j
-    Rgb specular;          ///< vis_j·Il_j/(d_j+K)·Ks·cosα_j^n (phong only)
+    Rgb diffuse;   ///< vis_j·Il_j·Kd·cosθ_j (lambert) or vis_j·Il_j/(d_j+K)·Kd·cosθ_j
+    Rgb specular;  ///< vis_j·Il_j/(d_j+K)·Ks·cosα_j^n (phong only)
 };
 
 /// The terms that add up to shade()'s colour: ambient + Σ_j (diffuse_j + specular_j).

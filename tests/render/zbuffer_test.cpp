@@ -82,9 +82,8 @@ TEST(Zbuffer, OrthographicSphereMatchesTheClosedFormAtEveryCoveredPixel) {
             const float cos_theta = std::max(0.0f, dot(N, L));
             const Vec3 R = N * (2 * dot(N, L)) - L;
             const float cos_alpha = std::max(0.0f, dot(R, S));
-            const float want =
-                0.1f + 10.0f / (dist + 1.0f) *
-                           (0.45f * cos_theta + 0.5f * std::pow(cos_alpha, m.n));
+            const float want = 0.1f + 10.0f / (dist + 1.0f) *
+                                          (0.45f * cos_theta + 0.5f * std::pow(cos_alpha, m.n));
             ASSERT_NEAR(img.at(i, j).x, want, kOne255) << i << "," << j;
         }
     }
@@ -160,8 +159,9 @@ TEST(Zbuffer, OrthographicFloorCellsArePrecise) {
             const Vec3 P = r.at(-r.origin.y / r.direction.y);
             const float fx = P.x - std::floor(P.x), fz = P.z - std::floor(P.z);
             if (fx < 0.001f || fx > 0.999f || fz < 0.001f || fz > 0.999f) continue;
-            const bool odd = (static_cast<long>(std::floor(P.x)) + static_cast<long>(std::floor(P.z)) +
-                              (-1)) & 1;
+            const bool odd =
+                (static_cast<long>(std::floor(P.x)) + static_cast<long>(std::floor(P.z)) + (-1)) &
+                1;
             ++checked;
             ASSERT_EQ(img.at(i, j).x, odd ? 0.0f : 1.0f) << i << "," << j;
         }
@@ -240,10 +240,10 @@ TEST(Zbuffer, SameBitsForAnyThreadCount) {
     const Image two = render_desc(d, 2);
     const Image four = render_desc(d, 4);
     ASSERT_EQ(one.pixels.size(), two.pixels.size());
-    EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(),
-                             one.pixels.size() * sizeof(Rgb)));
-    EXPECT_EQ(0, std::memcmp(one.pixels.data(), four.pixels.data(),
-                             one.pixels.size() * sizeof(Rgb)));
+    EXPECT_EQ(0,
+              std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(Rgb)));
+    EXPECT_EQ(0,
+              std::memcmp(one.pixels.data(), four.pixels.data(), one.pixels.size() * sizeof(Rgb)));
 }
 
 }  // namespace

@@ -86,8 +86,7 @@ TEST(Shade, ColouredLightsAddPerChannel) {
     const Lighting lighting{Model::phong, Rgb{0.5f, 1.0f, 2.0f}, 1.0f, lights};
     const Rgb I = shade(point_at_origin(m), lighting, AllVisible{});
     // Ia·Ka + Il_1/(1+1)·Kd + Il_2/(3+1)·Kd, channel by channel.
-    const Rgb want{0.5f * 0.1f + 0.5f * 0.4f, 1.0f * 0.2f + 0.5f * 0.5f,
-                   2.0f * 0.3f + 1.0f * 0.6f};
+    const Rgb want{0.5f * 0.1f + 0.5f * 0.4f, 1.0f * 0.2f + 0.5f * 0.5f, 2.0f * 0.3f + 1.0f * 0.6f};
     expect_rgb(I, want);
 }
 
@@ -151,8 +150,7 @@ TEST(Shade, CheckerReplacesKaKdInOddCells) {
     const Lighting lighting{Model::lambert, Rgb{1.0f}, 1.0f, lights};
     auto at = [&](Vec3 P) {
         // A floor at y = 0 seen from above: the cell is chosen just below the surface.
-        return shade(ShadingPoint{P, {0, 1, 0}, {0, 1, 0}, {0, 1, 0}, &m}, lighting,
-                     AllVisible{});
+        return shade(ShadingPoint{P, {0, 1, 0}, {0, 1, 0}, {0, 1, 0}, &m}, lighting, AllVisible{});
     };
     const Vec3 L0 = normalize(Vec3{0.5f, 10, 0.5f} - Vec3{0.5f, 0, 0.5f});
     // (0.5, 0, 0.5): cell (0, −1, 0), odd → checker constants.

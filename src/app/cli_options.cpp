@@ -1,0 +1,72 @@
+// The `luz render` options: their declaration for CLI11 and their translation into Overrides.
+#include "app/cli_options.h"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+namespace luz {
+
+void add_render_options(CLI::App& cmd, RenderOptions& o) {
+    cmd.add_option("SCENE", o.scene, "scene file, or demo:NAME (see `luz scenes`)")->required();
+    cmd.add_option("-o,--output", o.output,
+                   "output image; the extension picks the format: .png .ppm .pfm .exr "
+                   "(default: the scene's name + .png)")
+        ->type_name("OUT");
+    cmd.add_option("--pipeline", o.pipeline, "rendering pipeline (render.pipeline)")
+        ->type_name("zbuffer|raycast|raytrace");
+    cmd.add_option("--model", o.model, "illumination model (render.model)")
+        ->type_name("lambert|phong");
+    cmd.add_option("--width", o.width, "image width in pixels (image.width)")->type_name("INT");
+    cmd.add_option("--height", o.height, "image height in pixels (image.height)")->type_name("INT");
+    cmd.add_option("--max-depth", o.max_depth, "ray tree depth, raytrace (render.max_depth)")
+        ->type_name("INT");
+    cmd.add_option("--aa", o.aa, "antialiasing (render.antialias.mode)")
+        ->type_name("none|grid|adaptive");
+    cmd.add_option("--samples", o.samples,
+                   "samples per pixel for grid antialiasing, a perfect square "
+                   "(render.antialias.samples)")
+        ->type_name("INT");
+    cmd.add_option("--threshold", o.threshold,
+                   "colour difference that splits a pixel, adaptive antialiasing "
+                   "(render.antialias.threshold)")
+        ->type_name("NUMBER");
+    cmd.add_option("--threads", o.threads, "worker threads (default, or 0: all cores)")
+        ->check(CLI::Range(0, 4096));
+    cmd.add_option("--stats", o.stats_file, "write render statistics as JSON to FILE")
+        ->type_name("FILE");
+    cmd.add_flag("-q,--quiet", o.quiet, "print nothing on success, no progress bar");
+    cmd.add_option("--set", o.sets,
+                   "override any scene key by dotted path, e.g. materials.red.n=4 or "
+                   "lights.0.intensity=[1,0.9,0.8]; repeatable")
+        ->type_name("PATH=JSON")
+        ->allow_extra_args(false);
+    cmd.add_option("--max-memory", o.max_memory,
+                   "refuse images that need more memory than this (e.g. 2G; default: half "
+                   "of physical memory)")
+        ->type_name("BYTES")
+        ->transform(CLI::AsSizeValue(false));
+}
+
+std::vector<Override> overrides_of(const RenderOptions& o) {
+    std::vector<Override> out;
+    for (const std::string& s : o.sets) out.push_back(parse_set(s));
+
+    // Numbers go to the loader as typed (it checks their type and range); words are quoted.
+    auto number = [&](const std::optional<std::string>& v, const char* path, const char* opt) {
+        if (v) out.push_back(Override{path, *v, opt});
+    };
+    auto word = [&](const std::optional<std::string>& v, const char* path, const char* opt) {
+        if (v) out.push_back(Override{path, nlohmann::json(*v).dump(), opt});
+    };
+    word(o.pipeline, "render.pipeline", "--pipeline");
+    word(o.model, "render.model", "--model");
+    number(o.width, "image.width", "--width");
+    number(o.height, "image.height", "--height");
+    number(o.max_depth, "render.max_depth", "--max-depth");
+    word(o.aa, "render.antialias.mode", "--aa");
+    number(o.samples, "render.antialias.samples", "--samples");
+    number(o.threshold, "render.antialias.threshold", "--threshold");
+    return out;
+}
+
+}  // namespace luz

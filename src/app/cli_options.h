@@ -1,0 +1,37 @@
+// The `luz render` options (SPEC §3) and how the scene-overriding ones become Overrides.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/scene_loader.h"
+
+namespace CLI {
+class App;
+}
+
+namespace luz {
+
+/// Everything `luz render` was given. Scene-overriding values are kept as the user typed them
+/// and validated by the scene loader, so that every bad value is reported the same way.
+struct RenderOptions {
+    std::string scene;   ///< a file path or demo:NAME
+    std::string output;  ///< empty: the scene's name + ".png"
+    std::optional<std::string> pipeline, model, width, height, max_depth, aa, samples, threshold;
+    std::vector<std::string> sets;  ///< each "PATH=JSON", in the order given
+    int threads = 0;                ///< 0: all cores
+    std::string stats_file;         ///< empty: no statistics file
+    bool quiet = false;
+    std::optional<uint64_t> max_memory;  ///< bytes; default half of physical memory
+};
+
+/// Declares the render options on `cmd`, storing into `o`.
+void add_render_options(CLI::App& cmd, RenderOptions& o);
+
+/// The overrides for the loader: the --set ones in order, then one per scene-overriding
+/// option (origin = the option's name). Throws InputError for a malformed --set.
+std::vector<Override> overrides_of(const RenderOptions& o);
+
+}  // namespace luz

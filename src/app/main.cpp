@@ -1,0 +1,98 @@
+// The `luz` command: parses the command line (CLI11) and maps outcomes to exit statuses:
+// 0 success, 2 bad input (one line on standard error), 1 any other failure (SPEC §3).
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "app/cli_options.h"
+#include "app/list_commands.h"
+#include "app/render_command.h"
+#include "image/image_io.h"
+#include "scene/input_error.h"
+
+#ifndef LUZ_VERSION
+#define LUZ_VERSION "0.0.0"
+#endif
+
+namespace {
+
+/// Prints `message` on standard error as exactly one line.
+void print_error_line(const std::string& message) {
+    std::string line = message;
+    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+    for (char& c : line) {
+        if (c == '\n' || c == '\r') c = ' ';
+    }
+    std::fprintf(stderr, "%s\n", line.c_str());
+}
+
+int run(int argc, char** argv) {
+    CLI::App app{
+        "luz renders 3D scenes with the classic illumination models (ambient, Lambert, "
+        "Phong) through a z-buffer rasterizer or a ray tracer.",
+        "luz"};
+    app.set_version_flag("--version", std::string("luz ") + LUZ_VERSION);
+    app.require_subcommand(1);
+
+    luz::RenderOptions render_options;
+    CLI::App* render = app.add_subcommand("render", "render a scene to an image file");
+    luz::add_render_options(*render, render_options);
+
+    CLI::App* scenes = app.add_subcommand("scenes", "list the built-in scenes (demo:NAME)");
+    CLI::App* materials = app.add_subcommand("materials", "list the material presets");
+    std::string view_scene;
+    CLI::App* view = app.add_subcommand("view", "interactive window (not in this version)");
+    view->add_option("SCENE", view_scene, "scene file, or demo:NAME");
+
+    // CLI11 would only say "A subcommand is required" for a misspelt command
+    const auto is_command = [&](const std::string& name) {
+        for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+            if (sub->get_name() == name) return true;
+        }
+        return false;
+    };
+    if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1])) {
+        print_error_line(std::string("luz: unknown command \"") + argv[1] +
+                         "\" (expected render, view, scenes or materials; see luz --help)");
+        return 2;
+    }
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        print_error_line(std::string("luz: ") + e.what());
+        return 2;
+    }
+
+    if (*scenes) {
+        luz::print_scenes(stdout);
+        return 0;
+    }
+    if (*materials) {
+        luz::print_materials(stdout);
+        return 0;
+    }
+    if (*view) {
+        print_error_line("luz view: the interactive viewer is not implemented in this version");
+        return 1;
+    }
+    return luz::run_render(render_options);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const luz::InputError& e) {
+        print_error_line(e.what());  // already names the file and the place
+        return 2;
+    } catch (const std::exception& e) {
+        print_error_line(std::string("luz: ") + e.what());
+        return 1;
+    } catch (...) {
+        print_error_line("luz: unexpected failure");
+        return 1;
+    }
+}

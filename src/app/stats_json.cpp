@@ -1,0 +1,68 @@
+// `--stats FILE`: RenderStats to JSON.
+#include "app/stats_json.h"
+
+#include <sys/resource.h>
+
+namespace luz {
+
+const char* pipeline_name(Pipeline p) {
+    switch (p) {
+        case Pipeline::zbuffer:
+            return "zbuffer";
+        case Pipeline::raycast:
+            return "raycast";
+        case Pipeline::raytrace:
+            return "raytrace";
+    }
+    return "?";
+}
+
+static const char* model_name(Model m) { return m == Model::lambert ? "lambert" : "phong"; }
+
+static const char* aa_name(AaMode m) {
+    switch (m) {
+        case AaMode::none:
+            return "none";
+        case AaMode::grid:
+            return "grid";
+        case AaMode::adaptive:
+            return "adaptive";
+    }
+    return "?";
+}
+
+uint64_t peak_resident_bytes() {
+    rusage usage{};
+    if (getrusage(RUSAGE_SELF, &usage) != 0) return 0;
+    return static_cast<uint64_t>(usage.ru_maxrss) * 1024;  // Linux reports KiB
+}
+
+nlohmann::json stats_to_json(const RenderStats& s, const SceneDesc& desc) {
+    using nlohmann::json;
+    return json{
+        {"scene", desc.source},
+        {"seconds", s.seconds},
+        {"width", s.width},
+        {"height", s.height},
+        {"threads", s.threads},
+        {"pipeline", pipeline_name(desc.render.pipeline)},
+        {"model", model_name(desc.render.model)},
+        {"antialias", aa_name(desc.render.antialias.mode)},
+        {"rays", json{{"primary", s.rays_primary},
+                      {"shadow", s.rays_shadow},
+                      {"reflection", s.rays_reflection},
+                      {"refraction", s.rays_refraction}}},
+        {"intersection_tests", json{{"primitive", s.tests_primitive}, {"bounds", s.tests_bounds}}},
+        {"pixels_refined", s.pixels_refined},
+        {"samples", s.samples},
+        {"triangles", s.triangles},
+        {"bvh_nodes", s.bvh_nodes},
+        {"peak_memory_bytes", s.peak_memory_bytes},
+    };
+}
+
+std::string stats_json_text(const RenderStats& stats, const SceneDesc& desc) {
+    return stats_to_json(stats, desc).dump(2) + "\n";
+}
+
+}  // namespace luz

@@ -1,0 +1,121 @@
+// Atomic file writing: a temporary file in the same folder, flushed, then renamed into place.
+#include "image/atomic_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <random>
+#include <system_error>
+#include <utility>
+
+namespace luz {
+namespace {
+
+/// The text of an errno value ("No such file or directory").
+std::string error_text(int err) { return std::error_code(err, std::generic_category()).message(); }
+
+/// A 64-bit value that differs between calls and processes, for temporary file names.
+uint64_t random_suffix() {
+    static std::atomic<uint64_t> counter{0};
+    static const uint64_t seed = [] {
+        uint64_t s =
+            static_cast<uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+        try {
+            std::random_device rd;
+            s ^= (static_cast<uint64_t>(rd()) << 32) ^ rd();
+        } catch (...) {  // no entropy source: time and counter still make names unique enough
+        }
+        return s;
+    }();
+    // splitmix64 of seed + counter
+    uint64_t z = seed + 0x9e3779b97f4a7c15ULL * (counter.fetch_add(1) + 1);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+/// Writes all of `bytes` to `fd`; false with errno set on failure.
+bool write_all(int fd, const std::string& bytes) {
+    const char* p = bytes.data();
+    size_t left = bytes.size();
+    while (left > 0) {
+        const ssize_t n = ::write(fd, p, left);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            return false;
+        }
+        p += n;
+        left -= static_cast<size_t>(n);
+    }
+    return true;
+}
+
+}  // namespace
+
+PendingFile::PendingFile(std::string path_in, const std::string& bytes)
+    : path_(std::move(path_in)) {
+    const std::string& path = path_;
+    const size_t slash = path.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+    std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+    if (name.size() > 100) name.resize(100);  // keep the temporary name under NAME_MAX
+    const auto fail = [&path](int err) {
+        throw FileError(path + ": cannot write: " + error_text(err));
+    };
+
+    // Create the temporary file (0666 less the umask, as any new file).
+    std::string tmp;
+    int fd = -1;
+    for (int attempt = 0; fd < 0; ++attempt) {
+        char suffix[17];
+        std::snprintf(suffix, sizeof suffix, "%016llx",
+                      static_cast<unsigned long long>(random_suffix()));
+        tmp = dir + "." + name + ".tmp." + std::to_string(::getpid()) + "." + suffix;
+        fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd < 0 && (errno != EEXIST || attempt >= 100)) fail(errno);
+    }
+
+    // Write, flush to disk, close; any error removes the temporary file.
+    int err = 0;
+    if (!write_all(fd, bytes) || ::fsync(fd) != 0) err = errno;
+    if (::close(fd) != 0 && err == 0) err = errno;
+    if (err != 0) {
+        ::unlink(tmp.c_str());
+        fail(err);
+    }
+    tmp_ = tmp;
+}
+
+PendingFile::~PendingFile() {
+    if (!committed_) ::unlink(tmp_.c_str());
+}
+
+void PendingFile::commit() {
+    if (committed_) return;
+    if (::rename(tmp_.c_str(), path_.c_str()) != 0) {
+        const int err = errno;
+        ::unlink(tmp_.c_str());
+        committed_ = true;  // nothing left to remove
+        throw FileError(path_ + ": cannot write: " + error_text(err));
+    }
+    committed_ = true;
+    // Best effort: make the rename itself durable.
+    const size_t slash = path_.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "." : path_.substr(0, slash + 1);
+    const int dir_fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dir_fd >= 0) {
+        ::fsync(dir_fd);
+        ::close(dir_fd);
+    }
+}
+
+void write_file_atomically(const std::string& path, const std::string& bytes) {
+    PendingFile file(path, bytes);
+    file.commit();
+}
+
+}  // namespace luz

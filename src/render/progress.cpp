@@ -1,0 +1,108 @@
+// ProgressBar: drawing and rate limiting of the render's progress line on standard error.
+#include "render/progress.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace luz {
+
+std::string format_duration(double seconds) {
+    if (!std::isfinite(seconds) || seconds < 0) return "--";
+    const long long s = static_cast<long long>(std::ceil(seconds));
+    char buf[48];
+    if (s < 60) {
+        std::snprintf(buf, sizeof buf, "%llds", s);
+    } else if (s < 3600) {
+        std::snprintf(buf, sizeof buf, "%lldm%02llds", s / 60, s % 60);
+    } else {
+        std::snprintf(buf, sizeof buf, "%lldh%02lldm", s / 3600, (s % 3600) / 60);
+    }
+    return buf;
+}
+
+std::string format_progress(double fraction, double elapsed_s, int bar_width) {
+    if (!(fraction >= 0)) fraction = 0;  // also catches NaN
+    fraction = std::min(fraction, 1.0);
+    bar_width = std::max(bar_width, 1);
+    const int filled = static_cast<int>(std::floor(fraction * bar_width));
+    const int percent = static_cast<int>(std::floor(fraction * 100.0));
+
+    std::string line = "[";
+    line.append(static_cast<size_t>(filled), '#');
+    line.append(static_cast<size_t>(bar_width - filled), '-');
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "] %3d%%  ", percent);
+    line += buf;
+    if (fraction >= 1.0) {
+        if (elapsed_s < 60) {
+            std::snprintf(buf, sizeof buf, "done in %.1fs", elapsed_s);
+            line += buf;
+        } else {
+            line += "done in " + format_duration(elapsed_s);
+        }
+    } else if (fraction >= 0.01 && elapsed_s >= 0.5) {
+        // time left, assuming the rest goes at the average rate so far
+        line += "ETA " + format_duration(elapsed_s * (1.0 - fraction) / fraction);
+    } else {
+        line += "ETA --";  // too early to guess
+    }
+    return line;
+}
+
+bool stderr_is_terminal() { return isatty(STDERR_FILENO) == 1; }
+
+ProgressBar::ProgressBar(bool enabled, std::FILE* out, double min_interval_s)
+    : enabled_(enabled && out != nullptr),
+      out_(out),
+      min_interval_s_(min_interval_s),
+      start_(Clock::now()),
+      last_draw_(start_) {}
+
+ProgressBar::~ProgressBar() { abandon(); }
+
+void ProgressBar::update(double fraction) {
+    if (!enabled_) return;
+    std::unique_lock lock(mutex_, std::try_to_lock);
+    if (!lock.owns_lock() || done_) return;  // another thread is drawing: skip this report
+    best_fraction_ = std::max(best_fraction_, fraction);  // reports may arrive out of order
+    const auto now = Clock::now();
+    if (drawn_ && std::chrono::duration<double>(now - last_draw_).count() < min_interval_s_) {
+        return;
+    }
+    last_draw_ = now;
+    draw_locked(best_fraction_);
+}
+
+void ProgressBar::draw_locked(double fraction) {
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    const std::string line = format_progress(fraction, elapsed);
+    // \r returns to the start of the line, \033[K clears what a longer line left behind
+    std::fprintf(out_, "\r%s\033[K", line.c_str());
+    std::fflush(out_);
+    drawn_ = true;
+}
+
+void ProgressBar::finish() {
+    if (!enabled_) return;
+    std::lock_guard lock(mutex_);
+    if (done_) return;
+    draw_locked(1.0);
+    std::fputc('\n', out_);
+    std::fflush(out_);
+    done_ = true;
+}
+
+void ProgressBar::abandon() {
+    if (!enabled_) return;
+    std::lock_guard lock(mutex_);
+    if (done_) return;
+    if (drawn_) {
+        std::fputc('\n', out_);
+        std::fflush(out_);
+    }
+    done_ = true;
+}
+
+}  // namespace luz

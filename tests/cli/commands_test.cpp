@@ -1,0 +1,84 @@
+// The commands other than render: scenes, materials, view, --version, --help.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "cli/run_luz.h"
+#include "scene/demo_scenes.h"
+#include "scene/presets.h"
+
+namespace luz::test {
+namespace {
+
+class Commands : public TempDirTest {};
+
+TEST_F(Commands, ScenesListsEveryDemoOnItsOwnLine) {
+    const RunResult r = run_luz({"scenes"}, dir_);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(count_lines(r.out), static_cast<int>(demo_scenes().size()));
+    for (const DemoScene& d : demo_scenes()) {
+        const std::string name = "demo:" + std::string(d.name);
+        const size_t at = r.out.find(name + " ");
+        ASSERT_NE(at, std::string::npos) << name;
+        const size_t eol = r.out.find('\n', at);
+        EXPECT_NE(r.out.substr(at, eol - at).find(d.description), std::string::npos) << name;
+    }
+    EXPECT_NE(r.out.find("demo:primitives"), std::string::npos);
+}
+
+TEST_F(Commands, MaterialsListsEveryPresetWithItsConstants) {
+    const RunResult r = run_luz({"materials"}, dir_);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(count_lines(r.out), 1 + static_cast<int>(presets().size()));
+    for (const char* column :
+         {"name", "alias", "ka", "kd", "ks", "n", "reflection", "transparency", "ior"}) {
+        EXPECT_NE(r.out.find(column), std::string::npos) << column;
+    }
+    for (const Preset& p : presets()) {
+        const size_t at = r.out.find(std::string(p.name) + " ");
+        ASSERT_NE(at, std::string::npos) << p.name;
+        const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
+        EXPECT_NE(line.find(std::string(p.alias)), std::string::npos) << line;
+        char ior[32];
+        std::snprintf(ior, sizeof ior, "%g", p.material.ior);
+        EXPECT_NE(line.find(ior), std::string::npos) << line;
+    }
+    for (const char* name :
+         {"gesso", "madeira", "concreto", "cortica", "plastico", "metal_polido", "agua", "vidro"}) {
+        EXPECT_NE(r.out.find(name), std::string::npos) << name;
+    }
+}
+
+TEST_F(Commands, VersionPrintsNameAndVersion) {
+    const RunResult r = run_luz({"--version"}, dir_);
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.out, "luz 0.1.0\n");  // project(luz VERSION 0.1.0)
+}
+
+TEST_F(Commands, HelpListsTheCommands) {
+    const RunResult r = run_luz({"--help"}, dir_);
+    EXPECT_EQ(r.status, 0);
+    for (const char* word : {"render", "scenes", "materials", "view", "--version"}) {
+        EXPECT_NE(r.out.find(word), std::string::npos) << word;
+    }
+}
+
+TEST_F(Commands, RenderHelpListsEveryOption) {
+    const RunResult r = run_luz({"render", "--help"}, dir_);
+    EXPECT_EQ(r.status, 0);
+    for (const char* word :
+         {"--output", "--pipeline", "--model", "--width", "--height", "--max-depth", "--aa",
+          "--samples", "--threshold", "--threads", "--stats", "--quiet", "--set", "SCENE"}) {
+        EXPECT_NE(r.out.find(word), std::string::npos) << word;
+    }
+}
+
+TEST_F(Commands, ViewIsNotImplementedYet) {
+    const RunResult r = run_luz({"view", "demo:primitives"}, dir_);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("not implemented"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace luz::test
