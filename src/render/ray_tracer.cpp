@@ -1,19 +1,16 @@
-// trace(ray, depth) exactly as SPEC §1.1, and the tiled, parallel render of ray-traced images.
+// trace(ray, depth) exactly as SPEC §1.1.
 #include "render/ray_tracer.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 
-#include "render/parallel.h"
 
 namespace luz {
 
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
-constexpr int kTileSize = 16;
 
 /// Ray–sphere hit in (0, t_max) for a light sphere (centre c, radius r), nearest first.
 bool hit_light_sphere(const Ray& ray, const Vec3& c, float r, float& t) {
@@ -133,35 +130,6 @@ Rgb RayTracer::sample(float px, float py, TraceCounters& counters) const {
     ++counters.primary;
     float distance;
     return trace(camera_.ray(px, py), 0, counters, distance);
-}
-
-void render_ray_traced(const Scene& scene, const RenderControl& control, Image& out,
-                       RenderStats& stats) {
-    const RayTracer tracer(scene, scene.desc.render.pipeline == Pipeline::raytrace);
-    const int w = scene.desc.image.width, h = scene.desc.image.height;
-    const int tiles_x = (w + kTileSize - 1) / kTileSize, tiles_y = (h + kTileSize - 1) / kTileSize;
-    const size_t tile_count = static_cast<size_t>(tiles_x) * tiles_y;
-    std::vector<TraceCounters> counters(tile_count);
-    std::atomic<size_t> done{0};
-    parallel_items(control.threads, tile_count, [&](size_t t) {
-        if (control.cancel && control.cancel->load(std::memory_order_relaxed)) return;
-        const int x0 = static_cast<int>(t % tiles_x) * kTileSize;
-        const int y0 = static_cast<int>(t / tiles_x) * kTileSize;
-        TraceCounters& c = counters[t];
-        for (int y = y0; y < std::min(h, y0 + kTileSize); ++y)
-            for (int x = x0; x < std::min(w, x0 + kTileSize); ++x)
-                out.at(x, y) = tracer.sample(x + 0.5f, y + 0.5f, c);
-        if (control.progress) control.progress(static_cast<double>(++done) / tile_count);
-    });
-    for (const TraceCounters& c : counters) {
-        stats.rays_primary += c.primary;
-        stats.rays_shadow += c.shadow;
-        stats.rays_reflection += c.reflection;
-        stats.rays_refraction += c.refraction;
-        stats.tests_primitive += c.tests.primitive;
-        stats.tests_bounds += c.tests.bounds;
-    }
-    stats.samples += stats.rays_primary;
 }
 
 }  // namespace luz

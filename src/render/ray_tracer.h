@@ -67,7 +67,7 @@ class RayTracer {
     bool tree_attenuation_;
 };
 
-/// Renders the scene with the raycast or raytrace pipeline into `out`.
+/// Renders the scene with the raycast or raytrace pipeline into `out` (ray_render.cpp).
 void render_ray_traced(const Scene& scene, const RenderControl& control, Image& out,
                        RenderStats& stats);
 
