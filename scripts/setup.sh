@@ -2,7 +2,8 @@
 # Installs the Debian 12 packages luz needs to build and test, only those missing.
 set -euo pipefail
 packages=(cmake ninja-build g++ pkg-config nlohmann-json3-dev libcli11-dev libpng-dev
-          libopenexr-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev)
+          libopenexr-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev
+          libtinyobjloader-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

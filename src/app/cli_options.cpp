@@ -34,6 +34,10 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
         ->check(CLI::Range(0, 4096));
     cmd.add_option("--stats", o.stats_file, "write render statistics as JSON to FILE")
         ->type_name("FILE");
+    cmd.add_option("--aa-mask", o.aa_mask_file,
+                   "write an image of the pixels adaptive antialiasing refined, coloured by "
+                   "depth (1 blue ... 6 red; others dim grey); extension as for -o")
+        ->type_name("FILE");
     cmd.add_flag("-q,--quiet", o.quiet, "print nothing on success, no progress bar");
     cmd.add_option("--set", o.sets,
                    "override any scene key by dotted path, e.g. materials.red.n=4 or "

@@ -23,6 +23,7 @@ struct RenderOptions {
     std::vector<std::string> sets;  ///< each "PATH=JSON", in the order given
     int threads = 0;                ///< 0: all cores
     std::string stats_file;         ///< empty: no statistics file
+    std::string aa_mask_file;       ///< empty: no image of the adaptively refined pixels
     bool quiet = false;
     std::optional<uint64_t> max_memory;  ///< bytes; default half of physical memory
 };

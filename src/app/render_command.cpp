@@ -17,6 +17,7 @@
 #include "image/image_io.h"
 #include "render/progress.h"
 #include "render/render.h"
+#include "render/sampler.h"
 #include "scene/input_error.h"
 #include "scene/scene_loader.h"
 
@@ -60,10 +61,13 @@ int run_render(const RenderOptions& o) {
     // 1. Everything the command line alone can get wrong, before reading the scene.
     if (!o.output.empty()) check_output_path(o.output, "-o");
     if (!o.stats_file.empty()) check_writable_target(o.stats_file, "--stats");
+    if (!o.aa_mask_file.empty()) check_output_path(o.aa_mask_file, "--aa-mask");
     const std::vector<Override> overrides = overrides_of(o);
 
     // 2. The scene, with --set and then the options applied; one validation names the key.
     SceneDesc desc = load_scene(o.scene, overrides);
+    for (const std::string& w : desc.warnings)
+        std::fprintf(stderr, "luz: warning: %s\n", w.c_str());
     const std::string out = o.output.empty() ? desc.name + ".png" : o.output;
     if (o.output.empty()) check_output_path(out, "default output");
     check_memory(desc, o.max_memory);
@@ -74,6 +78,8 @@ int run_render(const RenderOptions& o) {
     ProgressBar bar(!o.quiet && stderr_is_terminal());
     RenderControl control;
     control.threads = o.threads;
+    AaMask mask;
+    if (!o.aa_mask_file.empty()) control.aa_mask = &mask;
     if (bar.enabled()) control.progress = [&bar](double f) { bar.update(f); };
     RenderStats stats;
     const Image image = render(scene, control, stats);  // on a throw, ~ProgressBar ends the line
@@ -87,12 +93,17 @@ int run_render(const RenderOptions& o) {
     if (stats.threads == 0) stats.threads = resolved_threads(o.threads);
     stats.peak_memory_bytes = std::max(stats.peak_memory_bytes, peak_resident_bytes());
 
-    // 4. The files: statistics to a temporary file, the image atomically, then the statistics
-    //    renamed into place, so that a failure leaves neither behind.
+    // 4. The files: statistics and the refinement mask to temporary files, the image
+    //    atomically, then the others renamed into place, so that a failure leaves none behind.
     std::optional<PendingFile> stats_file;
     if (!o.stats_file.empty()) stats_file.emplace(o.stats_file, stats_json_text(stats, desc));
+    std::optional<PendingFile> mask_file;
+    if (!o.aa_mask_file.empty()) {
+        mask_file.emplace(o.aa_mask_file, encode_image(o.aa_mask_file, aa_mask_image(mask, image)));
+    }
     write_image(out, image, desc.image.encoding);
     if (stats_file) stats_file->commit();
+    if (mask_file) mask_file->commit();
 
     if (!o.quiet) {
         std::printf("wrote %s (%d\u00d7%d, %s, %.2f s)\n", out.c_str(), image.width, image.height,

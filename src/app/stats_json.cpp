@@ -57,6 +57,19 @@ nlohmann::json stats_to_json(const RenderStats& s, const SceneDesc& desc) {
         {"samples", s.samples},
         {"triangles", s.triangles},
         {"bvh_nodes", s.bvh_nodes},
+        {"accel", desc.render.accel == Accel::bvh ? "bvh" : "none"},
+        {"bvh_build_seconds", s.bvh_build_seconds},
+        {"bvh_bytes", s.bvh_bytes},
+        {"intersection_time",
+         json{
+             {"share", s.sampled_seconds > 0 ? json(s.intersect_sampled_seconds / s.sampled_seconds)
+                                             : json(nullptr)},
+             {"sampled_seconds", s.sampled_seconds},
+             {"intersection_seconds", s.intersect_sampled_seconds},
+             {"method",
+              "timers around every nearest-hit and shadow-ray query of every 16th primary "
+              "sample, and around those whole samples; share = query time / sample time "
+              "(null: no rays traced)"}}},
         {"peak_memory_bytes", s.peak_memory_bytes},
     };
 }

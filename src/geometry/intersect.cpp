@@ -340,7 +340,28 @@ bool intersect_triangle(const WatertightRay& r, const Vec3& p0, const Vec3& p1, 
     return true;
 }
 
+bool intersect_mesh(const Mesh& mesh, const WatertightRay& w, float t_min, float t_max, Hit& hit) {
+    bool found = false;
+    Vec3 p0, p1, p2;
+    for (size_t k = 0; k < mesh.triangle_count(); ++k) {
+        mesh.vertices(k, p0, p1, p2);
+        float t, b1, b2;
+        if (intersect_triangle(w, p0, p1, p2, t_min, t_max, t, b1, b2)) {
+            t_max = t;
+            hit.t = t;
+            hit.u = b1;
+            hit.v = b2;
+            hit.part = static_cast<int>(k);
+            found = true;
+        }
+    }
+    return found;
+}
+
 bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit) {
+    if (s.type == ShapeType::mesh) {
+        return s.mesh && intersect_mesh(*s.mesh, prepare_watertight(r), t_min, t_max, hit);
+    }
     const Ray ro = s.transform.to_object(r);
     Nearest n{t_min, t_max};
     hit.u = hit.v = 0;
@@ -378,7 +399,7 @@ bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit)
             break;
         }
         case ShapeType::mesh:
-            return false;
+            return false;  // handled above
     }
     hit.t = n.best;
     hit.part = n.part;
@@ -386,6 +407,11 @@ bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit)
 }
 
 SurfacePoint surface_at(const Shape& s, const Ray& r, const Hit& hit) {
+    if (s.type == ShapeType::mesh) {
+        // world space; N interpolated (smooth) on the face normal's side, Ng the face normal
+        const size_t t = static_cast<size_t>(hit.part);
+        return {r.at(hit.t), s.mesh->shading_normal(t, hit.u, hit.v), s.mesh->face_normal(t)};
+    }
     const Ray ro = s.transform.to_object(r);
     const Vec3 p = ro.at(hit.t);
     // the outward normal in object space (any length)

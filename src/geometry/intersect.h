@@ -24,22 +24,29 @@ struct Hit {
     /// Triangles: the barycentrics of vertices 1 and 2 (P = (1−u−v)·v0 + u·v1 + v·v2);
     /// 0 for the other shapes (nothing needs their surface parameters yet).
     float u = 0, v = 0;
-    int part = part_side;  ///< HitPart, or the box face
+    int part = part_side;  ///< HitPart, the box face, or a mesh's triangle index
 };
 
 /// Nearest hit of world ray r with shape s in the open interval (t_min, t_max). The ray is
 /// moved into object space (transform.to_object, direction not normalised), so t is the same
-/// in both spaces. Valid for rays starting inside the shape (refraction). Meshes are not
-/// handled here (their triangles go through intersect_triangle()); they give false.
+/// in both spaces. Valid for rays starting inside the shape (refraction). A mesh tests every
+/// triangle (intersect_mesh); the scene queries use the BVH instead.
 bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit);
 
 /// Surface data at a hit: world position, unit outward shading normal (object normal by the
 /// inverse transpose, normalised), unit outward geometric normal. For triangles both are the
-/// winding normal (v1 − v0) × (v2 − v0); two-sided shading flips them later (SPEC §1.3).
+/// winding normal (v1 − v0) × (v2 − v0); two-sided shading flips them later (SPEC §1.3). For
+/// mesh triangles (Hit::part = triangle), N is the interpolated vertex normal of a smooth mesh
+/// and Ng the face normal.
 struct SurfacePoint {
     Vec3 P, N, Ng;
 };
 SurfacePoint surface_at(const Shape& s, const Ray& r, const Hit& hit);
+
+/// The material at a hit: the shape's, or for a mesh that of the triangle hit.
+inline int material_at(const Shape& s, const Hit& hit) {
+    return s.mesh ? s.mesh->materials[static_cast<size_t>(hit.part)] : s.material;
+}
 
 /// A ray prepared once for the watertight ray–triangle test of Woop, Benthin and Wald (JCGT
 /// 2013): the dominant axis kz of the direction, and the shear that maps the ray onto +z.
@@ -56,5 +63,9 @@ WatertightRay prepare_watertight(const Ray& r);
 /// at least one of them. Both sides count.
 bool intersect_triangle(const WatertightRay& r, const Vec3& p0, const Vec3& p1, const Vec3& p2,
                         float t_min, float t_max, float& t, float& b1, float& b2);
+
+/// The nearest hit among all triangles of `mesh` (in index order; ties keep the lowest index):
+/// hit.part = the triangle, hit.u, hit.v its barycentrics. hit.shape is left to the caller.
+bool intersect_mesh(const Mesh& mesh, const WatertightRay& w, float t_min, float t_max, Hit& hit);
 
 }  // namespace luz

@@ -1,20 +1,52 @@
 // Scene: the runtime scene built once from a SceneDesc; it never changes while rendering.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
+#include "geometry/bvh.h"
 #include "geometry/shape.h"
 #include "scene/scene_desc.h"
 
 namespace luz {
 
+/// A primitive of the scene's BVH: a bounded shape, or one triangle of a mesh shape with its
+/// world vertices copied here (so a leaf's triangles lie together in memory).
+struct BvhPrim {
+    Vec3 p0, p1, p2;    ///< the triangle's vertices (mesh triangles only)
+    uint32_t shape;     ///< index into Scene::shapes
+    uint32_t triangle;  ///< the mesh's triangle, or kNotTriangle for a whole shape
+
+    static constexpr uint32_t kNotTriangle = 0xFFFFFFFFu;
+};
+
 struct Scene {
     SceneDesc desc;               ///< settings, lights, materials
     std::vector<Shape> shapes;    ///< one per object, in the scene's order
     std::vector<Bounds3> bounds;  ///< world bounds of each shape (infinite for planes)
+    uint64_t mesh_triangles = 0;  ///< triangles in all meshes
+
+    // Ray queries (scene_query.h). The BVH holds every bounded shape and every mesh triangle;
+    // unbounded shapes (planes) are tested apart. Built by build_bvh().
+    Bvh bvh;
+    std::vector<BvhPrim> bvh_prims;   ///< in the BVH's leaf order: slot i is bvh_prims[i]
+    std::vector<uint32_t> unbounded;  ///< shapes outside the BVH (planes), in scene order
+    bool has_bvh = false;  ///< build_bvh() ran: queries use the BVH when render.accel is bvh
+    double bvh_build_seconds = 0;
+
+    /// Bytes held by the BVH: nodes, leaf order and primitives.
+    size_t bvh_bytes() const {
+        return bvh.memory_bytes() + bvh_prims.capacity() * sizeof(BvhPrim) +
+               unbounded.capacity() * sizeof(uint32_t);
+    }
 };
 
-/// Builds the runtime scene from a validated description.
+/// Builds the runtime scene from a validated description. The BVH is built when the scene's
+/// rays will use it: `render.accel` is bvh and the pipeline is raycast or raytrace.
 Scene build_scene(SceneDesc desc);
+
+/// (Re)builds scene.bvh over the scene's shapes and mesh triangles (binned SAH, bvh.h) and
+/// times it in bvh_build_seconds.
+void build_bvh(Scene& scene);
 
 }  // namespace luz

@@ -1,8 +1,11 @@
-// Scene ray queries by testing every shape (bounding box first, then the shape itself).
+// Scene ray queries: BVH traversal (render.accel = bvh) or every shape and triangle in order
+// (none), with one rule for ties so both give the same answers.
 #include "geometry/scene_query.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace luz {
 
@@ -21,54 +24,256 @@ bool hit_bounds(const Bounds3& b, const Ray& r, const Vec3& inv_dir, float t_min
 
 namespace {
 
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
 Vec3 inverse_direction(const Vec3& d) { return {1.0f / d.x, 1.0f / d.y, 1.0f / d.z}; }
+
+bool use_bvh(const Scene& scene) { return scene.has_bvh && scene.desc.render.accel == Accel::bvh; }
+
+/// The nearest hit so far, ordered by (t, shape, triangle): whatever order primitives are
+/// tested in, the lowest of these wins.
+struct Best {
+    explicit Best(float t_max) : t(t_max) {}
+    float t;  // t_max until something is found
+    uint32_t shape = 0, triangle = 0;
+    bool found = false;
+    Hit hit;
+
+    /// The t_max for a primitive test: ties with the best must still be reported.
+    float limit() const { return found ? std::nextafter(t, kInfinity) : t; }
+    bool better(float t2, uint32_t s, uint32_t tri) const {
+        return !found || t2 < t || (t2 == t && (s < shape || (s == shape && tri < triangle)));
+    }
+    void take(float t2, uint32_t s, uint32_t tri, float u, float v, int part) {
+        t = t2;
+        shape = s;
+        triangle = tri;
+        found = true;
+        hit.t = t2;
+        hit.shape = static_cast<int>(s);
+        hit.u = u;
+        hit.v = v;
+        hit.part = part;
+    }
+};
+
+/// Shape i (not a mesh) against r.
+void offer_shape(const Scene& scene, uint32_t i, const Ray& r, float t_min, Best& best,
+                 IntersectCounters& counters) {
+    ++counters.primitive;
+    Hit h;
+    if (intersect(scene.shapes[i], r, t_min, best.limit(), h) && best.better(h.t, i, 0)) {
+        best.take(h.t, i, 0, h.u, h.v, h.part);
+    }
+}
+
+/// Triangle `tri` of shape i, vertices p0, p1, p2, against r.
+void offer_triangle(const WatertightRay& w, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                    uint32_t i, uint32_t tri, float t_min, Best& best,
+                    IntersectCounters& counters) {
+    ++counters.primitive;
+    float t, b1, b2;
+    if (intersect_triangle(w, p0, p1, p2, t_min, best.limit(), t, b1, b2) &&
+        best.better(t, i, tri)) {
+        best.take(t, i, tri, b1, b2, static_cast<int>(tri));
+    }
+}
+
+bool nearest_bvh(const Scene& scene, const Ray& r, float t_min, Best& best,
+                 IntersectCounters& counters) {
+    for (uint32_t i : scene.unbounded) offer_shape(scene, i, r, t_min, best, counters);
+    const WatertightRay w = prepare_watertight(r);
+    float t_max = best.t;
+    scene.bvh.nearest(r, t_min, t_max, counters.bounds, [&](uint32_t slot, float& limit) {
+        const BvhPrim& p = scene.bvh_prims[slot];
+        if (p.triangle != BvhPrim::kNotTriangle) {
+            offer_triangle(w, p.p0, p.p1, p.p2, p.shape, p.triangle, t_min, best, counters);
+        } else {
+            offer_shape(scene, p.shape, r, t_min, best, counters);
+        }
+        limit = best.t;
+    });
+    return best.found;
+}
+
+bool nearest_all(const Scene& scene, const Ray& r, float t_min, Best& best,
+                 IntersectCounters& counters) {
+    const Vec3 inv_dir = inverse_direction(r.direction);
+    const WatertightRay w = prepare_watertight(r);
+    for (size_t k = 0; k < scene.shapes.size(); ++k) {
+        const Shape& s = scene.shapes[k];
+        const uint32_t i = static_cast<uint32_t>(k);
+        if (is_bounded(s)) {
+            ++counters.bounds;
+            if (!hit_bounds(scene.bounds[k], r, inv_dir, t_min, bvh_detail::with_margin(best.t)))
+                continue;
+        }
+        if (!s.mesh) {
+            offer_shape(scene, i, r, t_min, best, counters);
+            continue;
+        }
+        Vec3 p0, p1, p2;
+        for (size_t t = 0; t < s.mesh->triangle_count(); ++t) {
+            s.mesh->vertices(t, p0, p1, p2);
+            offer_triangle(w, p0, p1, p2, i, static_cast<uint32_t>(t), t_min, best, counters);
+        }
+    }
+    return best.found;
+}
+
+/// Transparent crossings counted per material; their product is taken in material order.
+class Crossings {
+  public:
+    void add(int material, uint32_t times, float transparency) {
+        for (int k = 0; k < n_; ++k) {
+            if (material_[k] == material) {
+                count_[k] += times;
+                return;
+            }
+        }
+        if (n_ == kMax) {
+            for (uint32_t c = 0; c < times; ++c) overflow_ *= transparency;
+            return;
+        }
+        material_[n_] = material;
+        count_[n_] = times;
+        transparency_[n_] = transparency;
+        ++n_;
+    }
+    float product() {
+        // insertion sort by material (n ≤ 32)
+        for (int i = 1; i < n_; ++i) {
+            for (int j = i; j > 0 && material_[j - 1] > material_[j]; --j) {
+                std::swap(material_[j - 1], material_[j]);
+                std::swap(count_[j - 1], count_[j]);
+                std::swap(transparency_[j - 1], transparency_[j]);
+            }
+        }
+        float T = 1.0f;
+        for (int k = 0; k < n_; ++k)
+            for (uint32_t c = 0; c < count_[k]; ++c) T *= transparency_[k];
+        return T * overflow_;
+    }
+
+  private:
+    static constexpr int kMax = 32;
+    int material_[kMax];
+    uint32_t count_[kMax];
+    float transparency_[kMax];
+    int n_ = 0;
+    float overflow_ = 1.0f;  // beyond kMax materials: multiplied as found
+};
+
+/// Every crossing of shape i (not a mesh) with r in (t_min, t_max); false on an opaque one.
+bool cross_shape(const Scene& scene, uint32_t i, const Ray& r, float t_min, float t_max,
+                 Crossings& crossings, IntersectCounters& counters) {
+    const Shape& s = scene.shapes[i];
+    const float transparency = scene.desc.materials[s.material].transparency;
+    Hit hit;
+    float t = t_min;
+    uint32_t n = 0;
+    for (int k = 0; k < 64; ++k) {
+        ++counters.primitive;
+        if (!intersect(s, r, t, t_max, hit)) break;
+        if (transparency <= 0) return false;
+        ++n;
+        // Step past this crossing (relative step: the same root is not found twice).
+        t = hit.t + 1e-4f * std::max(1.0f, hit.t);
+    }
+    if (n > 0) crossings.add(s.material, n, transparency);
+    return true;
+}
+
+/// Triangle `tri` of mesh shape i; false if it blocks (opaque).
+bool cross_triangle(const Scene& scene, const WatertightRay& w, const Vec3& p0, const Vec3& p1,
+                    const Vec3& p2, uint32_t i, uint32_t tri, float t_min, float t_max,
+                    Crossings& crossings, IntersectCounters& counters) {
+    ++counters.primitive;
+    float t, b1, b2;
+    if (!intersect_triangle(w, p0, p1, p2, t_min, t_max, t, b1, b2)) return true;
+    const int material = scene.shapes[i].mesh->materials[tri];
+    const float transparency = scene.desc.materials[material].transparency;
+    if (transparency <= 0) return false;
+    crossings.add(material, 1, transparency);
+    return true;
+}
+
+float transmittance_bvh(const Scene& scene, const Ray& r, float t_min, float t_max,
+                        IntersectCounters& counters) {
+    Crossings crossings;
+    for (uint32_t i : scene.unbounded) {
+        if (!cross_shape(scene, i, r, t_min, t_max, crossings, counters)) return 0.0f;
+    }
+    const WatertightRay w = prepare_watertight(r);
+    const bool blocked = scene.bvh.any(r, t_min, t_max, counters.bounds, [&](uint32_t slot) {
+        const BvhPrim& p = scene.bvh_prims[slot];
+        if (p.triangle != BvhPrim::kNotTriangle) {
+            return !cross_triangle(scene, w, p.p0, p.p1, p.p2, p.shape, p.triangle, t_min, t_max,
+                                   crossings, counters);
+        }
+        return !cross_shape(scene, p.shape, r, t_min, t_max, crossings, counters);
+    });
+    return blocked ? 0.0f : crossings.product();
+}
+
+float transmittance_all(const Scene& scene, const Ray& r, float t_min, float t_max,
+                        IntersectCounters& counters) {
+    const Vec3 inv_dir = inverse_direction(r.direction);
+    const WatertightRay w = prepare_watertight(r);
+    Crossings crossings;
+    for (size_t k = 0; k < scene.shapes.size(); ++k) {
+        const Shape& s = scene.shapes[k];
+        const uint32_t i = static_cast<uint32_t>(k);
+        if (is_bounded(s)) {
+            ++counters.bounds;
+            if (!hit_bounds(scene.bounds[k], r, inv_dir, t_min, t_max)) continue;
+        }
+        if (!s.mesh) {
+            if (!cross_shape(scene, i, r, t_min, t_max, crossings, counters)) return 0.0f;
+            continue;
+        }
+        Vec3 p0, p1, p2;
+        for (size_t t = 0; t < s.mesh->triangle_count(); ++t) {
+            s.mesh->vertices(t, p0, p1, p2);
+            if (!cross_triangle(scene, w, p0, p1, p2, i, static_cast<uint32_t>(t), t_min, t_max,
+                                crossings, counters))
+                return 0.0f;
+        }
+    }
+    return crossings.product();
+}
+
+/// Runs f(), adding its duration to counters.query_ns when counters.timing is set.
+template <class F>
+auto timed(IntersectCounters& counters, F&& f) {
+    if (!counters.timing) return f();
+    const auto start = std::chrono::steady_clock::now();
+    const auto result = f();
+    counters.query_ns += static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                                   std::chrono::steady_clock::now() - start)
+                                                   .count());
+    return result;
+}
 
 }  // namespace
 
 bool nearest_hit(const Scene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
                  IntersectCounters& counters) {
-    const Vec3 inv_dir = inverse_direction(r.direction);
-    bool found = false;
-    for (size_t i = 0; i < scene.shapes.size(); ++i) {
-        const Shape& s = scene.shapes[i];
-        if (is_bounded(s)) {
-            ++counters.bounds;
-            if (!hit_bounds(scene.bounds[i], r, inv_dir, t_min, t_max)) continue;
-        }
-        ++counters.primitive;
-        if (intersect(s, r, t_min, t_max, hit)) {
-            hit.shape = static_cast<int>(i);
-            t_max = hit.t;
-            found = true;
-        }
-    }
-    return found;
+    return timed(counters, [&] {
+        Best best(t_max);
+        const bool found = use_bvh(scene) ? nearest_bvh(scene, r, t_min, best, counters)
+                                          : nearest_all(scene, r, t_min, best, counters);
+        if (found) hit = best.hit;
+        return found;
+    });
 }
 
 float transmittance(const Scene& scene, const Ray& r, float t_min, float t_max,
                     IntersectCounters& counters) {
-    const Vec3 inv_dir = inverse_direction(r.direction);
-    float T = 1.0f;
-    for (size_t i = 0; i < scene.shapes.size(); ++i) {
-        const Shape& s = scene.shapes[i];
-        if (is_bounded(s)) {
-            ++counters.bounds;
-            if (!hit_bounds(scene.bounds[i], r, inv_dir, t_min, t_max)) continue;
-        }
-        const float transparency = scene.desc.materials[s.material].transparency;
-        // Every crossing of this shape's surface along the segment, in order.
-        Hit hit;
-        float t = t_min;
-        for (int crossings = 0; crossings < 64; ++crossings) {
-            ++counters.primitive;
-            if (!intersect(s, r, t, t_max, hit)) break;
-            if (transparency <= 0) return 0.0f;
-            T *= transparency;
-            // Step past this crossing (relative step: the same root is not found twice).
-            t = hit.t + 1e-4f * std::max(1.0f, hit.t);
-        }
-    }
-    return T;
+    return timed(counters, [&] {
+        return use_bvh(scene) ? transmittance_bvh(scene, r, t_min, t_max, counters)
+                              : transmittance_all(scene, r, t_min, t_max, counters);
+    });
 }
 
 }  // namespace luz

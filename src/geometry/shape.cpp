@@ -80,7 +80,8 @@ Shape make_shape(const ObjectDesc& o, int object_index) {
             for (int k = 0; k < 3; ++k) s.vertices[k] = o.vertices[k];
             break;
         case ShapeType::mesh:
-            throw std::logic_error(o.path + ": mesh objects are not supported by make_shape yet");
+            s.mesh = std::make_shared<const Mesh>(build_mesh(o));
+            return s;  // world space already: identity transform
     }
     s.transform = Transform::from(o.transform * placement);
     return s;
@@ -132,7 +133,9 @@ Bounds3 bounds(const Shape& s) {
             for (const Vec3& p : s.vertices) b.expand(s.transform.point(p));
             break;
         case ShapeType::mesh:
-            throw std::logic_error("bounds: mesh shapes are not supported yet");
+            if (!s.mesh || s.mesh->bounds.empty()) return Bounds3{};  // no triangles: empty
+            b = s.mesh->bounds;
+            break;
     }
     return pad(b);
 }

@@ -2,8 +2,10 @@
 // Every shape answers bounds(), tessellate() (tessellate.h) and, for the ray tracer, intersect().
 #pragma once
 
+#include <memory>
 #include <vector>
 
+#include "geometry/mesh.h"
 #include "math/bounds.h"
 #include "math/transform.h"
 #include "scene/scene_desc.h"
@@ -18,15 +20,17 @@ namespace luz {
 /// - torus:    major radius 1 around +z in the z = 0 plane, minor radius `minor` (< 1);
 /// - plane:    z = 0, outward normal +z, unbounded;
 /// - triangle: `vertices` as the keys give them; two-sided.
+/// - mesh:     `mesh`, already in world space (identity transform); two-sided.
 struct Shape {
     ShapeType type = ShapeType::sphere;
-    int material = 0;     ///< index into SceneDesc::materials
-    int object = 0;       ///< index into SceneDesc::objects
-    Transform transform;  ///< user transform · placement of the canonical shape
-    bool caps = false;    ///< cylinder: both ends; cone: the base
-    float minor = 0.25f;  ///< torus: minor_radius / major_radius
-    Vec3 lo, hi;          ///< box corners in object space
-    Vec3 vertices[3];     ///< triangle vertices in object space
+    int material = 0;                  ///< index into SceneDesc::materials
+    int object = 0;                    ///< index into SceneDesc::objects
+    Transform transform;               ///< user transform · placement of the canonical shape
+    bool caps = false;                 ///< cylinder: both ends; cone: the base
+    float minor = 0.25f;               ///< torus: minor_radius / major_radius
+    Vec3 lo, hi;                       ///< box corners in object space
+    Vec3 vertices[3];                  ///< triangle vertices in object space
+    std::shared_ptr<const Mesh> mesh;  ///< mesh: its triangles (shared by copies of the shape)
 };
 
 /// The runtime shape of an object description (validated: non-degenerate).

@@ -213,9 +213,37 @@ void triangle(Emitter& e, const Vec3 (&v)[3]) {
     e.triangle(a, b, c);
 }
 
+/// A mesh's own triangles (already world space). Smooth: its shared vertices and normals; flat:
+/// three vertices per triangle carrying the face normal, so interpolation keeps it constant.
+void mesh_triangles(const Mesh& m, TriangleMesh& out) {
+    const uint32_t base = static_cast<uint32_t>(out.positions.size());
+    if (m.smooth()) {
+        out.positions.insert(out.positions.end(), m.positions.begin(), m.positions.end());
+        for (const Vec3& n : m.normals) out.normals.push_back(n == Vec3{0.0f} ? Vec3{0, 0, 1} : n);
+        for (uint32_t i : m.indices) out.indices.push_back(base + i);
+        return;
+    }
+    out.positions.reserve(out.positions.size() + m.indices.size());
+    out.normals.reserve(out.normals.size() + m.indices.size());
+    for (size_t t = 0; t < m.triangle_count(); ++t) {
+        Vec3 p[3];
+        m.vertices(t, p[0], p[1], p[2]);
+        const Vec3 n = m.face_normal(t);
+        for (int k = 0; k < 3; ++k) {
+            out.indices.push_back(static_cast<uint32_t>(out.positions.size()));
+            out.positions.push_back(p[k]);
+            out.normals.push_back(n);
+        }
+    }
+}
+
 }  // namespace
 
 void tessellate(const Shape& s, int level, TriangleMesh& out) {
+    if (s.type == ShapeType::mesh) {
+        if (s.mesh) mesh_triangles(*s.mesh, out);
+        return;
+    }
     level = std::max(3, level);
     Emitter e(s.transform, out);
     switch (s.type) {
@@ -240,7 +268,7 @@ void tessellate(const Shape& s, int level, TriangleMesh& out) {
             triangle(e, s.vertices);
             break;
         case ShapeType::mesh:
-            throw std::logic_error("tessellate: mesh shapes are not supported yet");
+            break;  // above
     }
 }
 

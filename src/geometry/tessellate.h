@@ -10,7 +10,8 @@ namespace luz {
 /// (segments around a full circle; ≥ 3). Normals are the analytic surface normals transformed
 /// by the inverse transpose, normalised. Closed shapes come out watertight (every edge shared
 /// by exactly two triangles, by position). Planes append nothing (the rasterizer draws them
-/// as quads clipped to the view).
+/// as quads clipped to the view). A mesh appends its own triangles, in order, whatever the
+/// level (flat meshes: three vertices per triangle with the face normal).
 void tessellate(const Shape& s, int level, TriangleMesh& out);
 
 /// Area of the shape's surface as the tessellation would approximate it, in world space,

@@ -101,7 +101,7 @@ uint8_t encode_8bit(float I, Encoding e) {
     return static_cast<uint8_t>(255.0 * v + 0.5);
 }
 
-void write_image(const std::string& path, const Image& img, Encoding e) {
+std::string encode_image(const std::string& path, const Image& img, Encoding e) {
     ImageFormat format{};
     if (!format_from_path(path, format)) {
         throw ImageError(
@@ -136,6 +136,11 @@ void write_image(const std::string& path, const Image& img, Encoding e) {
     } catch (const std::exception& ex) {
         throw ImageError(path + ": cannot write: " + ex.what());
     }
+    return bytes;
+}
+
+void write_image(const std::string& path, const Image& img, Encoding e) {
+    const std::string bytes = encode_image(path, img, e);
     try {
         write_file_atomically(path, bytes);
     } catch (const FileError& ex) {

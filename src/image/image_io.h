@@ -25,6 +25,10 @@ bool format_from_path(const std::string& path, ImageFormat& out);
 /// 8-bit value of a linear intensity: linear round(255·clamp(I,0,1)), or the sRGB curve.
 uint8_t encode_8bit(float I, Encoding e);
 
+/// The bytes of `img` in the format its extension names, as write_image would write them (for
+/// files committed together with others, see atomic_file.h); throws ImageError naming `path`.
+std::string encode_image(const std::string& path, const Image& img, Encoding e = Encoding::linear);
+
 /// Writes `img` to `path` in the format its extension names, atomically.
 void write_image(const std::string& path, const Image& img, Encoding e = Encoding::linear);
 

@@ -2,9 +2,9 @@
 #include "render/ray_tracer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
-
 
 namespace luz {
 
@@ -83,7 +83,7 @@ Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& 
 
     // The local model at P, with S = −ray.direction and shadow rays (raytrace).
     const Shape& shape = scene_.shapes[hit.shape];
-    const Material& m = desc.materials[shape.material];
+    const Material& m = desc.materials[material_at(shape, hit)];
     const SurfacePoint sp = surface_at(shape, ray, hit);
     const Vec3 D = ray.direction;
     const ShadingPoint p{sp.P, sp.N, sp.Ng, -D, &m};
@@ -127,9 +127,19 @@ Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& 
 }
 
 Rgb RayTracer::sample(float px, float py, TraceCounters& counters) const {
-    ++counters.primary;
     float distance;
-    return trace(camera_.ray(px, py), 0, counters, distance);
+    if (counters.primary++ % kTimedSampleEvery != 0) {
+        return trace(camera_.ray(px, py), 0, counters, distance);
+    }
+    // A timed sample: the whole of it, and its scene queries (IntersectCounters::timing).
+    const auto start = std::chrono::steady_clock::now();
+    counters.tests.timing = true;
+    const Rgb c = trace(camera_.ray(px, py), 0, counters, distance);
+    counters.tests.timing = false;
+    counters.timed_ns += static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                                   std::chrono::steady_clock::now() - start)
+                                                   .count());
+    return c;
 }
 
 }  // namespace luz

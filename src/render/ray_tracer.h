@@ -18,8 +18,13 @@ namespace luz {
 /// Rays traced and intersection tests, counted per thread and summed at the end.
 struct TraceCounters {
     uint64_t primary = 0, shadow = 0, reflection = 0, refraction = 0;
-    IntersectCounters tests;
+    IntersectCounters tests;  ///< tests.query_ns: time in scene queries of the timed samples
+    uint64_t timed_ns = 0;    ///< total time of the timed samples (every kTimedSampleEvery-th)
 };
+
+/// One primary sample in this many is timed whole and in its scene queries, to measure the
+/// share of time spent in intersection (RenderStats::intersect_sampled_seconds).
+inline constexpr uint64_t kTimedSampleEvery = 16;
 
 /// Offset of secondary and shadow ray origins along the geometric normal (SPEC §1.1: ≤ 1e-4).
 inline constexpr float kRayEpsilon = 1e-4f;
@@ -49,7 +54,8 @@ class RayTracer {
     /// the distance to what the ray hit (infinity on a miss).
     Rgb trace(const Ray& ray, int depth, TraceCounters& counters, float& distance) const;
 
-    /// The colour at pixel-space point (px, py): one primary ray.
+    /// The colour at pixel-space point (px, py): one primary ray. Every kTimedSampleEvery-th
+    /// call (counted in `counters`) is timed (TraceCounters::timed_ns, tests.query_ns).
     Rgb sample(float px, float py, TraceCounters& counters) const;
 
     const Camera& camera() const { return camera_; }

@@ -25,8 +25,12 @@ Image render(const Scene& scene, const RenderControl& control, RenderStats& stat
         case Pipeline::raycast:
         case Pipeline::raytrace:
             render_ray_traced(scene, control, out, stats);
+            stats.triangles += scene.mesh_triangles;  // raytrace: triangles in meshes (SPEC §3)
             break;
     }
+    stats.bvh_nodes = scene.bvh.nodes().size();
+    stats.bvh_build_seconds = scene.bvh_build_seconds;
+    stats.bvh_bytes = scene.bvh_bytes();
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
 }

@@ -10,6 +10,8 @@
 
 namespace luz {
 
+struct AaMask;
+
 /// How a render is run: threads, progress reports and cancellation.
 struct RenderControl {
     int threads = 0;  ///< 0: all cores
@@ -17,6 +19,9 @@ struct RenderControl {
     std::function<void(double)> progress;
     /// When set and true, the render stops early (the image is then incomplete).
     const std::atomic<bool>* cancel = nullptr;
+    /// When set, receives which pixels adaptive antialiasing refined and how deeply
+    /// (render/sampler.h; no pixel is refined in the other modes).
+    AaMask* aa_mask = nullptr;
 };
 
 /// Renders `scene` with its render settings; fills `stats`.

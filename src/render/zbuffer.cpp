@@ -12,6 +12,7 @@
 
 #include "geometry/tessellate.h"
 #include "render/parallel.h"
+#include "render/sampler.h"
 #include "scene/camera.h"
 #include "shading/shade.h"
 
@@ -53,8 +54,15 @@ struct Frame {
     Camera camera;
     bool perspective;
     int width, height, tiles_x, tiles_y;
-    std::vector<ClipVertex> vertices;  ///< projected mesh positions
+    std::vector<ClipVertex> vertices;            ///< projected mesh positions
+    int64_t unit = int64_t{1} << kSubpixelBits;  ///< fixed-point units per pixel
+    int tile = kTileSize;                        ///< pixels per tile side
+    int margin = 0;  ///< pixels a triangle's box grows by when binned (samples on tile borders)
 };
+
+/// ⌊a / b⌋ and ⌈a / b⌉ for b > 0.
+int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }
 
 ClipVertex project(const Camera& cam, bool perspective, const Vec3& p) {
     const Vec3 v = cam.to_view(p);
@@ -113,8 +121,8 @@ float near_depth(const Frame& f) { return f.perspective ? 1e-4f : 0.0f; }
 
 /// Screen-space setup of a clipped or unclipped triangle; false if it covers no area.
 bool setup(const Frame& f, const ClipVertex* v, uint32_t triangle, RasterTriangle& r) {
-    const double sx = 0.5 * f.width * (1 << kSubpixelBits);
-    const double sy = 0.5 * f.height * (1 << kSubpixelBits);
+    const double sx = 0.5 * f.width * static_cast<double>(f.unit);
+    const double sy = 0.5 * f.height * static_cast<double>(f.unit);
     for (int i = 0; i < 3; ++i) {
         const float iw = 1.0f / v[i].w;
         // px = (x+1)·W/2, py = (1−y)·H/2 (SPEC §1.3), in fixed point.
@@ -132,13 +140,16 @@ bool setup(const Frame& f, const ClipVertex* v, uint32_t triangle, RasterTriangl
 
 /// Adds a set-up triangle to the bins of the tiles its bounding box touches.
 void bin(const Frame& f, ChunkBins& bins, const RasterTriangle& r) {
-    const int32_t lo_x = std::min({r.x[0], r.x[1], r.x[2]}) >> kSubpixelBits;
-    const int32_t hi_x = std::max({r.x[0], r.x[1], r.x[2]}) >> kSubpixelBits;
-    const int32_t lo_y = std::min({r.y[0], r.y[1], r.y[2]}) >> kSubpixelBits;
-    const int32_t hi_y = std::max({r.y[0], r.y[1], r.y[2]}) >> kSubpixelBits;
+    const auto pixel = [&](int32_t v, int grow) {
+        return static_cast<int32_t>(floor_div(v, f.unit)) + grow;
+    };
+    const int32_t lo_x = pixel(std::min({r.x[0], r.x[1], r.x[2]}), -f.margin);
+    const int32_t hi_x = pixel(std::max({r.x[0], r.x[1], r.x[2]}), f.margin);
+    const int32_t lo_y = pixel(std::min({r.y[0], r.y[1], r.y[2]}), -f.margin);
+    const int32_t hi_y = pixel(std::max({r.y[0], r.y[1], r.y[2]}), f.margin);
     if (hi_x < 0 || hi_y < 0 || lo_x >= f.width || lo_y >= f.height) return;
-    const int tx0 = std::max(0, lo_x / kTileSize), tx1 = std::min(f.tiles_x - 1, hi_x / kTileSize);
-    const int ty0 = std::max(0, lo_y / kTileSize), ty1 = std::min(f.tiles_y - 1, hi_y / kTileSize);
+    const int tx0 = std::max(0, lo_x / f.tile), tx1 = std::min(f.tiles_x - 1, hi_x / f.tile);
+    const int ty0 = std::max(0, lo_y / f.tile), ty1 = std::min(f.tiles_y - 1, hi_y / f.tile);
     const auto index = static_cast<uint32_t>(bins.triangles.size());
     bins.triangles.push_back(r);
     for (int ty = ty0; ty <= ty1; ++ty)
@@ -190,9 +201,22 @@ struct Fragment {
     float b1, b2;  ///< perspective-correct barycentrics of vertices 1 and 2
 };
 
-/// Rasterizes one triangle into a tile's fragments (pixel centres, top-left fill rule).
+/// The points a tile is rasterized at: point (a, b) at (x0 + a·step, y0 + b·step) in fixed
+/// point, 0 ≤ a < w, 0 ≤ b < h; its fragment is frags[b·w + a]. Pixel centres, antialiasing
+/// samples and pixel corners are all such lattices.
+struct Lattice {
+    int64_t x0, y0, step;
+    int w, h;
+};
+
+/// The lattice of the pixel centres of a tile.
+Lattice centres(const Frame& f, int x0, int y0, int w, int h) {
+    return {x0 * f.unit + f.unit / 2, y0 * f.unit + f.unit / 2, f.unit, w, h};
+}
+
+/// Rasterizes one triangle into a lattice's fragments (top-left fill rule).
 void rasterize(const Frame& f, const RasterTriangle& r, const std::array<Vec3, 3>* clip_bary,
-               int tile_x0, int tile_y0, int tile_w, int tile_h, Fragment* frags) {
+               const Lattice& lat, Fragment* frags) {
     int64_t x[3] = {r.x[0], r.x[1], r.x[2]}, y[3] = {r.y[0], r.y[1], r.y[2]};
     int order[3] = {0, 1, 2};
     // Edge functions are positive inside for a counter-clockwise triangle on screen (y down).
@@ -203,32 +227,27 @@ void rasterize(const Frame& f, const RasterTriangle& r, const std::array<Vec3, 3
         std::swap(order[1], order[2]);
         area = -area;
     }
-    const int64_t one = 1 << kSubpixelBits, half = one / 2;
-    // Pixel range of the bounding box within the tile (pixel centres at i + 0.5).
+    const int64_t step = lat.step;
+    // Lattice range of the bounding box.
     const int64_t min_x = std::min({x[0], x[1], x[2]}), max_x = std::max({x[0], x[1], x[2]});
     const int64_t min_y = std::min({y[0], y[1], y[2]}), max_y = std::max({y[0], y[1], y[2]});
-    const int px0 =
-        static_cast<int>(std::max<int64_t>(tile_x0, (min_x - half + one - 1) >> kSubpixelBits));
-    const int px1 =
-        static_cast<int>(std::min<int64_t>(tile_x0 + tile_w - 1, (max_x - half) >> kSubpixelBits));
-    const int py0 =
-        static_cast<int>(std::max<int64_t>(tile_y0, (min_y - half + one - 1) >> kSubpixelBits));
-    const int py1 =
-        static_cast<int>(std::min<int64_t>(tile_y0 + tile_h - 1, (max_y - half) >> kSubpixelBits));
+    const int px0 = static_cast<int>(std::max<int64_t>(0, ceil_div(min_x - lat.x0, step)));
+    const int px1 = static_cast<int>(std::min<int64_t>(lat.w - 1, floor_div(max_x - lat.x0, step)));
+    const int py0 = static_cast<int>(std::max<int64_t>(0, ceil_div(min_y - lat.y0, step)));
+    const int py1 = static_cast<int>(std::min<int64_t>(lat.h - 1, floor_div(max_y - lat.y0, step)));
     if (px0 > px1 || py0 > py1) return;
 
     // Edge k is opposite vertex k: E_k(p) = (b − a) × (p − a) for a = v[k+1], b = v[k+2].
     int64_t ex[3], ey[3], e0[3], bias[3];
-    const int64_t sx = (static_cast<int64_t>(px0) << kSubpixelBits) + half;
-    const int64_t sy = (static_cast<int64_t>(py0) << kSubpixelBits) + half;
+    const int64_t sx = lat.x0 + px0 * step, sy = lat.y0 + py0 * step;
     for (int k = 0; k < 3; ++k) {
         const int a = (k + 1) % 3, b = (k + 2) % 3;
         const int64_t dx = x[b] - x[a], dy = y[b] - y[a];
         // Inside: E_k = dx·(py − ya) − dy·(px − xa) ≥ 0 (y down, positive area).
-        ex[k] = -dy * one;  // change per pixel step in x
-        ey[k] = dx * one;   // change per pixel step in y
+        ex[k] = -dy * step;  // change per lattice step in x
+        ey[k] = dx * step;   // change per lattice step in y
         e0[k] = dx * (sy - y[a]) - dy * (sx - x[a]);
-        // Top-left rule: a pixel centre exactly on an edge belongs to the triangle only if the
+        // Top-left rule: a lattice point exactly on an edge belongs to the triangle only if the
         // edge is a top edge (horizontal, interior below) or a left edge.
         const bool top = dy == 0 && dx > 0;
         const bool left = dy < 0;
@@ -241,7 +260,7 @@ void rasterize(const Frame& f, const RasterTriangle& r, const std::array<Vec3, 3
     const bool persp = f.perspective;
     for (int py = py0; py <= py1; ++py) {
         int64_t w0 = e0[0], w1 = e0[1], w2 = e0[2];
-        Fragment* row = frags + static_cast<size_t>(py - tile_y0) * tile_w;
+        Fragment* row = frags + static_cast<size_t>(py) * lat.w;
         for (int px = px0; px <= px1; ++px) {
             if ((w0 | w1 | w2) >= 0) {
                 // Screen-space barycentrics λ (without the top-left bias).
@@ -263,7 +282,7 @@ void rasterize(const Frame& f, const RasterTriangle& r, const std::array<Vec3, 3
                     b[2] = l2;
                     depth = l0 * d[0] + l1 * d[1] + l2 * d[2];
                 }
-                Fragment& frag = row[px - tile_x0];
+                Fragment& frag = row[px];
                 if (depth < frag.depth) {
                     // Barycentrics of the set-up vertices → of the original triangle.
                     float o[3] = {0, 0, 0};
@@ -287,40 +306,136 @@ void rasterize(const Frame& f, const RasterTriangle& r, const std::array<Vec3, 3
     }
 }
 
+Lighting lighting_of(const SceneDesc& desc) {
+    return {desc.render.model, desc.ambient, desc.attenuation_k, desc.lights};
+}
+
+/// The colour of one fragment: the background, a light sphere's clamped colour, or shade() at
+/// its point (counted as a sample).
+Rgb shade_fragment(const Frame& f, const Lighting& lighting, const Fragment& frag,
+                   RenderStats& stats) {
+    const SceneDesc& desc = f.scene.desc;
+    const TriangleMesh& mesh = f.geometry.mesh;
+    if (frag.triangle == kNoTriangle) return desc.image.background;
+    const int32_t material = f.geometry.triangle_material[frag.triangle];
+    if (material < 0) {  // a visible light sphere: the light's clamped colour
+        return clamp01(desc.lights[-1 - material].intensity);
+    }
+    const uint32_t* idx = &mesh.indices[3 * static_cast<size_t>(frag.triangle)];
+    const float b0 = 1.0f - frag.b1 - frag.b2;
+    ShadingPoint p;
+    p.P = mesh.positions[idx[0]] * b0 + mesh.positions[idx[1]] * frag.b1 +
+          mesh.positions[idx[2]] * frag.b2;
+    p.N = normalize(mesh.normals[idx[0]] * b0 + mesh.normals[idx[1]] * frag.b1 +
+                    mesh.normals[idx[2]] * frag.b2);
+    p.Ng = f.geometry.triangle_normal[frag.triangle];
+    p.S = f.perspective ? normalize(f.camera.position - p.P) : f.camera.w;
+    p.material = &desc.materials[material];
+    ++stats.samples;
+    return shade(p, lighting, AllVisible{});
+}
+
 /// Shades a tile's fragments into the image.
 void shade_tile(const Frame& f, int x0, int y0, int w, int h, const Fragment* frags, Image& out,
                 RenderStats& stats) {
-    const SceneDesc& desc = f.scene.desc;
-    const TriangleMesh& mesh = f.geometry.mesh;
-    const Lighting lighting{desc.render.model, desc.ambient, desc.attenuation_k, desc.lights};
-    for (int j = 0; j < h; ++j) {
-        for (int i = 0; i < w; ++i) {
-            const Fragment& frag = frags[static_cast<size_t>(j) * w + i];
-            Rgb& pixel = out.at(x0 + i, y0 + j);
-            if (frag.triangle == kNoTriangle) {
-                pixel = desc.image.background;
-                continue;
-            }
-            const int32_t material = f.geometry.triangle_material[frag.triangle];
-            if (material < 0) {  // a visible light sphere: the light's clamped colour
-                pixel = clamp01(desc.lights[-1 - material].intensity);
-                continue;
-            }
-            const uint32_t* idx = &mesh.indices[3 * static_cast<size_t>(frag.triangle)];
-            const float b0 = 1.0f - frag.b1 - frag.b2;
-            ShadingPoint p;
-            p.P = mesh.positions[idx[0]] * b0 + mesh.positions[idx[1]] * frag.b1 +
-                  mesh.positions[idx[2]] * frag.b2;
-            p.N = normalize(mesh.normals[idx[0]] * b0 + mesh.normals[idx[1]] * frag.b1 +
-                            mesh.normals[idx[2]] * frag.b2);
-            p.Ng = f.geometry.triangle_normal[frag.triangle];
-            p.S = f.perspective ? normalize(f.camera.position - p.P) : f.camera.w;
-            p.material = &desc.materials[material];
-            pixel = shade(p, lighting, AllVisible{});
-            ++stats.samples;
+    const Lighting lighting = lighting_of(f.scene.desc);
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i)
+            out.at(x0 + i, y0 + j) =
+                shade_fragment(f, lighting, frags[static_cast<size_t>(j) * w + i], stats);
+}
+
+constexpr Fragment kEmptyFragment{std::numeric_limits<float>::infinity(), kNoTriangle, 0, 0};
+
+/// Rasterizes the triangles binned to tile `t` into the fragments of lattice `lat`, chunks in
+/// order, so that ties resolve the same way always.
+void rasterize_bins(const Frame& f, const std::vector<ChunkBins>& chunks, size_t t,
+                    const Lattice& lat, Fragment* frags) {
+    std::fill(frags, frags + static_cast<size_t>(lat.w) * lat.h, kEmptyFragment);
+    for (const ChunkBins& c : chunks) {
+        for (uint32_t index : c.tile_lists[t]) {
+            const RasterTriangle& r = c.triangles[index];
+            rasterize(f, r, r.clip >= 0 ? &c.clip_bary[r.clip] : nullptr, lat, frags);
         }
     }
 }
+
+PixelRect tile_rect(const Frame& f, size_t t) {
+    const int x0 = static_cast<int>(t % f.tiles_x) * f.tile;
+    const int y0 = static_cast<int>(t / f.tiles_x) * f.tile;
+    return {x0, y0, std::min(f.width, x0 + f.tile), std::min(f.height, y0 + f.tile)};
+}
+
+/// Per-thread fragments of antialiased tiles (their lattices outgrow the stack).
+std::vector<Fragment>& fragment_scratch() {
+    thread_local std::vector<Fragment> frags;
+    return frags;
+}
+
+/// Grid antialiasing: fixed-point units per pixel, a multiple of 2s so that every sample
+/// (i + (a+0.5)/s) is exact — 256·s unless the guard band would then overflow 32 bits.
+int64_t grid_unit(int s, int width, int height) {
+    int64_t k = 128;
+    const int64_t extent = static_cast<int64_t>(kGuardBand / 2 + 1) * std::max(width, height);
+    while (k > 1 && extent * 2 * s * k >= (int64_t{1} << 31)) k /= 2;
+    return 2 * s * k;
+}
+
+/// Grid antialiasing: tile side in pixels, so that a tile's samples and the tent's ring stay
+/// under ~300×300.
+int grid_tile_size(int s) { return s <= 4 ? kTileSize : (s <= 8 ? 32 : 16); }
+
+/// Grid antialiasing of tile `t` (SPEC §1.2): the samples of its pixels (and of the ring the
+/// tent filter reaches) are the centres of the sub-pixels of a raster s times finer — one
+/// lattice rasterized at once, shaded, then filtered into the image.
+void grid_tile(const Frame& f, const std::vector<ChunkBins>& chunks, size_t t, const GridSpec& g,
+               Image& out, RenderStats& stats) {
+    const PixelRect tile = tile_rect(f, t), region = g.region(tile);
+    const int s = g.s;
+    const Lattice lat{region.x0 * f.unit + f.unit / (2 * s), region.y0 * f.unit + f.unit / (2 * s),
+                      f.unit / s, region.width() * s, region.height() * s};
+    std::vector<Fragment>& frags = fragment_scratch();
+    frags.resize(static_cast<size_t>(lat.w) * lat.h);
+    rasterize_bins(f, chunks, t, lat, frags.data());
+    std::vector<Rgb>& colours = grid_scratch_for_this_thread();
+    colours.resize(frags.size());
+    const Lighting lighting = lighting_of(f.scene.desc);
+    for (int b = 0; b < lat.h; ++b) {
+        const int j = region.y0 + b / s;
+        for (int a = 0; a < lat.w; ++a) {
+            const int i = region.x0 + a / s;
+            const bool inside = i >= tile.x0 && i < tile.x1 && j >= tile.y0 && j < tile.y1;
+            float x, y;
+            g.position(i, j, a % s, b % s, x, y);
+            const size_t k = static_cast<size_t>(b) * lat.w + a;
+            colours[k] = inside || g.needed(tile, x, y)
+                             ? shade_fragment(f, lighting, frags[k], stats)
+                             : Rgb{0.0f};
+        }
+    }
+    filter_tile(g, tile, region, colours.data(), out);
+}
+
+/// Adaptive antialiasing in the zbuffer: the sub-corners of a refined pixel. Its finest
+/// lattice (i + k/S, j + l/S) is rasterized once (coverage and depth); the refinement then
+/// shades only the points it asks for.
+struct ZbufferFine {
+    const Frame& f;
+    const std::vector<ChunkBins>& chunks;
+    size_t tile;
+    const Lighting& lighting;
+    RenderStats& stats;
+    int S;
+    Fragment* frags;  ///< (S+1)² fragments
+
+    void begin_pixel(int i, int j) {
+        rasterize_bins(f, chunks, tile, Lattice{i * f.unit, j * f.unit, f.unit / S, S + 1, S + 1},
+                       frags);
+    }
+    Rgb colour(int, int, int k, int l) {
+        return shade_fragment(f, lighting, frags[static_cast<size_t>(l) * (S + 1) + k], stats);
+    }
+};
 
 /// The scene's size: the diagonal of everything bounded, the camera and what it looks at.
 float scene_size(const Scene& scene) {
@@ -391,6 +506,12 @@ ZbufferGeometry prepare_zbuffer(const Scene& scene) {
             tessellate(s, level, g.mesh);
         }
         append_triangles_from(first, s.material, g);
+        if (s.mesh) {
+            // a mesh's triangles, appended in order, each with its own material
+            const size_t n = s.mesh->triangle_count();
+            std::copy(s.mesh->materials.begin(), s.mesh->materials.end(),
+                      g.triangle_material.end() - static_cast<std::ptrdiff_t>(n));
+        }
     }
     // Visible light spheres, drawn in the light's clamped colour (SPEC §1.1).
     for (size_t j = 0; j < scene.desc.lights.size(); ++j) {
@@ -416,10 +537,33 @@ void render_zbuffer(const Scene& scene, const ZbufferGeometry& geometry,
             scene.desc.camera.projection == Projection::perspective,
             img.width,
             img.height,
-            (img.width + kTileSize - 1) / kTileSize,
-            (img.height + kTileSize - 1) / kTileSize,
+            0,
+            0,
             {}};
     if (out.width != img.width || out.height != img.height) out = Image(img.width, img.height);
+
+    // Antialiasing (SPEC §1.2) sets the raster's fixed-point unit and its tiles.
+    const AntialiasDesc& aa = scene.desc.render.antialias;
+    const GridSpec grid = [&] {
+        GridSpec g = GridSpec::from(aa, img.width, img.height);
+        g.jitter = false;  // the zbuffer samples the regular grid (docs/ARCHITECTURE.md)
+        return g;
+    }();
+    if (aa.mode == AaMode::grid) {
+        f.unit = grid_unit(grid.s, img.width, img.height);
+        f.tile = grid_tile_size(grid.s);
+        f.margin = aa.filter == AaFilter::tent ? 1 : 0;
+    } else if (aa.mode == AaMode::adaptive) {
+        f.tile = kSamplerTile;
+        f.margin = 1;  // corners on a tile's right and bottom borders
+    }
+    f.tiles_x = (img.width + f.tile - 1) / f.tile;
+    f.tiles_y = (img.height + f.tile - 1) / f.tile;
+    if (control.aa_mask) {
+        control.aa_mask->width = img.width;
+        control.aa_mask->height = img.height;
+        control.aa_mask->level.assign(static_cast<size_t>(img.width) * img.height, 0);
+    }
 
     // 1. Project every vertex.
     const auto& positions = geometry.mesh.positions;
@@ -441,26 +585,72 @@ void render_zbuffer(const Scene& scene, const ZbufferGeometry& geometry,
 
     // 3. Rasterize and shade each tile: chunks in order, so ties resolve the same way always.
     const size_t tile_count = static_cast<size_t>(f.tiles_x) * f.tiles_y;
-    std::vector<RenderStats> tile_stats(tile_count);
+    const size_t items = aa.mode == AaMode::adaptive ? 2 * tile_count : tile_count;
+    std::vector<RenderStats> tile_stats(items);
     std::atomic<size_t> tiles_done{0};
-    parallel_items(control.threads, tile_count, [&](size_t t) {
-        if (control.cancel && control.cancel->load(std::memory_order_relaxed)) return;
-        const int tx = static_cast<int>(t % f.tiles_x), ty = static_cast<int>(t / f.tiles_x);
-        const int x0 = tx * kTileSize, y0 = ty * kTileSize;
-        const int w = std::min(kTileSize, f.width - x0), h = std::min(kTileSize, f.height - y0);
-        Fragment frags[kTileSize * kTileSize];
-        std::fill(frags, frags + w * h,
-                  Fragment{std::numeric_limits<float>::infinity(), kNoTriangle, 0, 0});
-        for (const ChunkBins& c : chunks) {
-            for (uint32_t index : c.tile_lists[t]) {
-                const RasterTriangle& r = c.triangles[index];
-                rasterize(f, r, r.clip >= 0 ? &c.clip_bary[r.clip] : nullptr, x0, y0, w, h, frags);
-            }
-        }
-        shade_tile(f, x0, y0, w, h, frags, out, tile_stats[t]);
+    const auto cancelled = [&] {
+        return control.cancel && control.cancel->load(std::memory_order_relaxed);
+    };
+    const auto report = [&] {
         const size_t done = ++tiles_done;
-        if (control.progress) control.progress(static_cast<double>(done) / tile_count);
-    });
+        if (control.progress) control.progress(static_cast<double>(done) / items);
+    };
+    switch (aa.mode) {
+        case AaMode::none:
+            parallel_items(control.threads, tile_count, [&](size_t t) {
+                if (cancelled()) return;
+                const PixelRect r = tile_rect(f, t);
+                Fragment frags[kTileSize * kTileSize];
+                rasterize_bins(f, chunks, t, centres(f, r.x0, r.y0, r.width(), r.height()), frags);
+                shade_tile(f, r.x0, r.y0, r.width(), r.height(), frags, out, tile_stats[t]);
+                report();
+            });
+            break;
+        case AaMode::grid:
+            parallel_items(control.threads, tile_count, [&](size_t t) {
+                if (cancelled()) return;
+                grid_tile(f, chunks, t, grid, out, tile_stats[t]);
+                report();
+            });
+            break;
+        case AaMode::adaptive: {
+            // Pass 1: every pixel corner (x, y integers), rasterized and shaded once.
+            const int W = f.width, H = f.height;
+            std::vector<Rgb> corners(static_cast<size_t>(W + 1) * (H + 1));
+            parallel_items(control.threads, tile_count, [&](size_t t) {
+                if (cancelled()) return;
+                const PixelRect c = corner_rect(tile_rect(f, t), W, H);
+                const Lattice lat{c.x0 * f.unit, c.y0 * f.unit, f.unit, c.width(), c.height()};
+                std::vector<Fragment>& frags = fragment_scratch();
+                frags.resize(static_cast<size_t>(lat.w) * lat.h);
+                rasterize_bins(f, chunks, t, lat, frags.data());
+                const Lighting lighting = lighting_of(scene.desc);
+                for (int y = 0; y < lat.h; ++y)
+                    for (int x = 0; x < lat.w; ++x)
+                        corners[static_cast<size_t>(c.y0 + y) * (W + 1) + c.x0 + x] =
+                            shade_fragment(f, lighting, frags[static_cast<size_t>(y) * lat.w + x],
+                                           tile_stats[t]);
+                report();
+            });
+            // Pass 2: pixels whose corners differ are refined on their finest lattice.
+            const AdaptiveSpec spec = AdaptiveSpec::from(aa, W, H);
+            parallel_items(control.threads, tile_count, [&](size_t t) {
+                if (cancelled()) return;
+                RenderStats& ts = tile_stats[tile_count + t];
+                const Lighting lighting = lighting_of(scene.desc);
+                const int S = spec.lattice();
+                std::vector<Fragment>& frags = fragment_scratch();
+                frags.resize(static_cast<size_t>(S + 1) * (S + 1));
+                ZbufferFine fine{f, chunks, t, lighting, ts, S, frags.data()};
+                SamplerCounts counts;
+                refine_tile(spec, tile_rect(f, t), corners.data(), fine, out, control.aa_mask,
+                            counts);
+                ts.pixels_refined += counts.pixels_refined;
+                report();
+            });
+            break;
+        }
+    }
     for (const RenderStats& s : tile_stats) stats.add_counters(s);
 }
 

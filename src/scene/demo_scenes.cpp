@@ -98,6 +98,43 @@ constexpr std::string_view kMaterials = R"json({
   ]
 })json";
 
+// The Stanford bunny (scenes/bunny.obj, 3674 triangles, compiled into luz) in glass, between
+// the primitives of the practical assignment and a polished metal sphere, ray traced: the
+// mesh refracts the checkered floor and shows in the metal. Exposure as demo:primitives.
+constexpr std::string_view kBunny = R"json({
+  "image":  { "width": 800, "height": 600, "background": [0.3, 0.4, 0.55] },
+  "camera": { "projection": "perspective", "position": [0, 3.2, 7.5], "look_at": [0, 0.7, 0],
+              "up": [0, 1, 0], "fov_y": 38 },
+  "render": { "pipeline": "raytrace", "model": "phong", "max_depth": 6 },
+  "lights": [
+    { "position": [-5, 8, 7], "intensity": 10 },
+    { "position": [6, 4, 8],  "intensity": 4 }
+  ],
+  "materials": {
+    "floor":  { "ka": [0.08, 0.08, 0.08], "kd": [0.55, 0.55, 0.55], "ks": 0.05, "n": 4,
+                "checker": { "size": 1, "ka": [0.05, 0.05, 0.055], "kd": [0.3, 0.3, 0.34] } },
+    "blue":   { "ka": [0.02, 0.045, 0.11], "kd": [0.15, 0.3, 0.75], "ks": 0.5, "n": 30 },
+    "yellow": { "ka": [0.11, 0.09, 0.02], "kd": [0.75, 0.6, 0.15], "ks": 0.4, "n": 25 },
+    "jade":   { "ka": [0.02, 0.09, 0.045], "kd": [0.15, 0.6, 0.3], "ks": 0.5, "n": 50 },
+    "mirror": { "preset": "metal_polido", "reflection": 0.8 }
+  },
+  "objects": [
+    { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "floor" },
+    { "type": "mesh", "file": "bunny.obj", "smooth": true, "material": "vidro",
+      "transform": { "scale": 0.17, "rotate": [0, 20, 0], "translate": [0, 0, 0.6] } },
+    { "type": "sphere", "center": [-1.6, 0.9, -1.6], "radius": 0.9, "material": "mirror" },
+    { "type": "sphere", "center": [-2.9, 0.45, 0.6], "radius": 0.45, "material": "plastico" },
+    { "type": "box", "min": [-0.4, 0, -0.4], "max": [0.4, 0.8, 0.4], "material": "madeira",
+      "transform": { "rotate": [0, 30, 0], "translate": [1.3, 0, -1.8] } },
+    { "type": "cylinder", "base": [2.9, 0, -0.4], "axis": [0, 1, 0], "radius": 0.4, "height": 1.0,
+      "caps": true, "material": "blue" },
+    { "type": "cone", "base": [2.2, 0, 1.3], "axis": [0, 1, 0], "radius": 0.45, "height": 1.1,
+      "cap": true, "material": "yellow" },
+    { "type": "torus", "center": [-1.9, 0.4, 1.9], "axis": [0, 1, 1], "major_radius": 0.4,
+      "minor_radius": 0.13, "material": "jade" }
+  ]
+})json";
+
 constexpr DemoScene kDemos[] = {
     {"primitives",
      "the practical assignment: sphere, cube, cylinder, cone and torus on a floor (zbuffer)",
@@ -107,6 +144,9 @@ constexpr DemoScene kDemos[] = {
      "the eight presets as spheres: gesso, madeira, concreto, cortica (back); plastico, "
      "metal_polido, agua, vidro (front) (raytrace)",
      kMaterials},
+    {"bunny",
+     "the Stanford bunny in glass among the primitives and a metal sphere (raytrace, a mesh)",
+     kBunny},
 };
 
 }  // namespace

@@ -2,12 +2,14 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "math/transform.h"
 #include "math/vec3.h"
 #include "scene/material.h"
+#include "scene/mesh_data.h"
 
 namespace luz {
 
@@ -88,6 +90,12 @@ struct ObjectDesc {
     // mesh
     std::string file;
     bool smooth = true;
+    /// The loaded OBJ file (shared: objects naming the same file share it).
+    std::shared_ptr<const MeshData> mesh;
+    /// MeshData::materials index → index into SceneDesc::materials; empty when the object
+    /// names a material (then every triangle has `material`). Faces without an MTL material
+    /// have `material` (the default material unless the object names one).
+    std::vector<int> mesh_materials;
 };
 
 struct SceneDesc {
@@ -101,6 +109,7 @@ struct SceneDesc {
     std::vector<Light> lights;
     std::vector<Material> materials;  ///< materials[0] is the default material
     std::vector<ObjectDesc> objects;
+    std::vector<std::string> warnings;  ///< non-fatal input problems ("FILE:LINE: what")
 };
 
 }  // namespace luz

@@ -14,10 +14,14 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <utility>
 
 #include "scene/demo_scenes.h"
+#include "scene/embedded_files.h"
+#include "scene/obj_loader.h"
 #include "scene/presets.h"
 
 namespace luz {
@@ -442,6 +446,12 @@ class MaterialTable {
         fail(path, "expected a material name or a material object, got " + describe(j));
     }
 
+    /// Adds a material no key names (an MTL material); returns its index.
+    int add(const Material& m) {
+        list_.push_back(m);
+        return static_cast<int>(list_.size()) - 1;
+    }
+
   private:
     /// A material object: optionally `preset` first, then the constants it overrides.
     static Material read_material(const Json& j, const std::string& path) {
@@ -528,8 +538,54 @@ std::vector<std::string_view> keys_of(ShapeType t) {
     return {};
 }
 
+/// The OBJ files of the scene's meshes, each loaded once (SPEC §2 `mesh`).
+class MeshFiles {
+  public:
+    explicit MeshFiles(SceneDesc& scene) : scene_(scene) {}
+
+    /// Loads o.file into o.mesh. Without a `material` key, the MTL materials its faces use join
+    /// the scene's materials (named "file.obj:name") and o.mesh_materials maps them. A built-in
+    /// scene reads its meshes from the binary (embedded_files.h), other files from disk.
+    void load(ObjectDesc& o, bool names_material, MaterialTable& materials) {
+        const bool with_materials = !names_material;
+        Loaded& l = loaded_[{o.file, with_materials}];
+        if (!l.mesh) {
+            const bool demo = scene_.source.rfind("demo:", 0) == 0;
+            const TextReader read = [demo](const std::string& path, std::string& reason) {
+                if (demo) {
+                    if (const auto text = embedded_file(path))
+                        return std::optional(std::string(*text));
+                }
+                return read_text_file(path, reason);
+            };
+            std::string reason;
+            const std::optional<std::string> text = read(o.file, reason);
+            if (!text) {
+                throw InputError(scene_.source + ": " + o.path + ".file: cannot read " + o.file +
+                                 ": " + reason);
+            }
+            l.mesh = std::make_shared<const MeshData>(
+                parse_obj(*text, o.file, with_materials, read, scene_.warnings));
+            if (with_materials) {
+                for (const Material& m : l.mesh->materials)
+                    l.scene_index.push_back(materials.add(m));
+            }
+        }
+        o.mesh = l.mesh;
+        o.mesh_materials = l.scene_index;
+    }
+
+  private:
+    struct Loaded {
+        std::shared_ptr<const MeshData> mesh;
+        std::vector<int> scene_index;
+    };
+    SceneDesc& scene_;
+    std::map<std::pair<std::string, bool>, Loaded> loaded_;
+};
+
 ObjectDesc read_object(const Json& j, const std::string& path, MaterialTable& materials,
-                       const std::string& base_dir) {
+                       const std::string& base_dir, MeshFiles& meshes) {
     if (!j.is_object()) fail(path, "expected an object, got " + describe(j));
     ObjectDesc o;
     o.path = path;
@@ -631,7 +687,7 @@ ObjectDesc read_object(const Json& j, const std::string& path, MaterialTable& ma
     }
     if (const Json* m = s.get("material")) o.material = materials.resolve(*m, s.key("material"));
     if (const Json* t = s.get("transform")) o.transform = read_transform(*t, s.key("transform"));
-    if (o.type == ShapeType::mesh) fail(path, "mesh objects are not supported yet");
+    if (o.type == ShapeType::mesh) meshes.load(o, s.get("material") != nullptr, materials);
     return o;
 }
 
@@ -685,11 +741,13 @@ void read_scene(const Json& doc, const std::string& base_dir, SceneDesc& scene) 
     top.number("attenuation_k", scene.attenuation_k, kPositive);
 
     MaterialTable materials(scene.materials);
+    MeshFiles meshes(scene);
     if (const Json* j = top.get("materials")) materials.read_section(*j);
     if (const Json* j = top.get("objects")) {
         if (!j->is_array()) fail("objects", "expected an array of objects, got " + describe(*j));
         for (std::size_t i = 0; i < j->size(); ++i) {
-            scene.objects.push_back(read_object((*j)[i], join("objects", i), materials, base_dir));
+            scene.objects.push_back(
+                read_object((*j)[i], join("objects", i), materials, base_dir, meshes));
         }
     }
     read_lights(top.get("lights"), scene);

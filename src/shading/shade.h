@@ -84,10 +84,13 @@ inline Rgb shade(const ShadingPoint& p, const Lighting& lighting, Visibility&& v
                 } else {
                     // I += vis_j·Il_j/(d_j+K)·(Kd·cosθ_j + Ks·cosα_j^n)
                     const Vec3 R = N * (2 * N_dot_L) - L;  // mirror direction of L_j
-                    t.cos_alpha = std::fmax(0.0f, dot(R, p.S));
+                    const float R_dot_S = dot(R, p.S);
+                    t.cos_alpha = R_dot_S > 0 ? R_dot_S : 0.0f;
                     const Rgb Il_att = light.intensity * (t.visibility / (d + lighting.K));
                     t.diffuse = Il_att * c.kd * t.cos_theta;
-                    t.specular = Il_att * m.ks * std::pow(t.cos_alpha, m.n);
+                    // cosα^n, with 0^n = 0 (n > 0) taken without calling pow.
+                    const float cos_alpha_n = t.cos_alpha > 0 ? std::pow(t.cos_alpha, m.n) : 0.0f;
+                    t.specular = Il_att * m.ks * cos_alpha_n;
                 }
                 I += t.diffuse + t.specular;
             }

@@ -123,12 +123,32 @@ std::vector<BadCase> bad_cases() {
                            R"({"materials": {"x": {"preset": "unobtainium"}},
                                "objects": [{"type": "sphere", "material": "x"}]})",
                            {"s.json", "materials.x.preset"}));
-    // Mesh objects are validated but not rendered in this version: exit 2 naming the object.
-    // (With OBJ loading, a missing or malformed OBJ file will be named instead.)
+    // --- OBJ files (meshes): the OBJ file and its line; a missing file names the key too
     v.push_back(BadCase{"mesh_object",
                         {{"s.json", R"({"objects": [{"type": "mesh", "file": "nope.obj"}]})"}},
                         {"render", "s.json", "-o", "out.png"},
-                        {"s.json", "objects.0"}});
+                        {"s.json", "objects.0.file", "nope.obj", "No such file"}});
+    const std::string mesh_scene = R"({"objects": [{"type": "mesh", "file": "m/x.obj"}]})";
+    v.push_back(
+        BadCase{"obj_index_out_of_range",
+                {{"s.json", mesh_scene}, {"m/x.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"}},
+                {"render", "s.json", "-o", "out.png"},
+                {"m/x.obj:4:", "out of range"}});
+    v.push_back(BadCase{
+        "obj_malformed_number",
+        {{"s.json", mesh_scene}, {"m/x.obj", "v 0 0 0\r\nv 1 0,5 0\r\nv 0 1 0\r\nf 1 2 3\r\n"}},
+        {"render", "s.json", "-o", "out.png"},
+        {"m/x.obj:2:", "malformed number \"0,5\""}});
+    v.push_back(BadCase{"obj_not_finite",
+                        {{"s.json", mesh_scene}, {"m/x.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\n"}},
+                        {"render", "s.json", "-o", "out.png"},
+                        {"m/x.obj:3:", "not a finite number"}});
+    v.push_back(BadCase{"mtl_malformed_number",
+                        {{"s.json", mesh_scene},
+                         {"m/x.obj", "mtllib x.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"},
+                         {"m/x.mtl", "newmtl a\nKd 1 1 x\n"}},
+                        {"render", "s.json", "-o", "out.png"},
+                        {"m/x.mtl:2:", "malformed number"}});
     // --- the scene argument
     v.push_back(BadCase{
         "missing_scene_file", {}, {"render", "missing.json", "-o", "out.png"}, {"missing.json"}});

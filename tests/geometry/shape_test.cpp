@@ -92,11 +92,25 @@ TEST(MakeShape, UserTransformAppliesAfterThePlacement) {
     expect_near(s.transform.point({1, 0, 0}), {0, 8, 0});  // radius 0.5 · 2
 }
 
-TEST(MakeShape, MeshIsNotSupportedYet) {
+TEST(MakeShape, MeshIsItsTrianglesInWorldSpace) {
+    auto data = std::make_shared<MeshData>();
+    data->positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    data->position = {0, 1, 2};
+    data->normal = {-1, -1, -1};
+    data->material = {-1};
     ObjectDesc o;
     o.type = ShapeType::mesh;
-    o.file = "bunny.obj";
-    EXPECT_THROW(make_shape(o, 0), std::logic_error);
+    o.mesh = data;
+    o.transform = translation({0, 0, 5});
+    const Shape s = make_shape(o, 0);
+    ASSERT_NE(s.mesh, nullptr);
+    EXPECT_EQ(s.mesh->positions[1], (Vec3{1, 0, 5}));
+    EXPECT_EQ(s.transform.point({1, 2, 3}), (Vec3{1, 2, 3}));  // identity: already world space
+    const Bounds3 b = bounds(s);
+    EXPECT_LE(b.lo.z, 5.0f);
+    EXPECT_GE(b.hi.x, 1.0f);
+    o.mesh = nullptr;  // no OBJ loaded: an empty mesh with empty bounds
+    EXPECT_TRUE(bounds(make_shape(o, 0)).empty());
 }
 
 /// Bounds of the tessellation's vertices.

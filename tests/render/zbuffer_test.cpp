@@ -180,8 +180,9 @@ TEST(Zbuffer, CoarseSphereHasNoCracks) {
     for (int j = 0; j < 200; ++j) {
         for (int i = 0; i < 200; ++i) {
             const Vec3 o = cam.ray(i + 0.5f, j + 0.5f).origin;
-            if (o.x * o.x + o.y * o.y < inner * inner)
+            if (o.x * o.x + o.y * o.y < inner * inner) {
                 ASSERT_FALSE(is_background(img.at(i, j))) << i << "," << j;
+            }
         }
     }
 }

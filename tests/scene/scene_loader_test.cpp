@@ -393,16 +393,21 @@ TEST(SceneLoader, LoadsAFileNamedByItsStem) {
     EXPECT_EQ(s.source, file.string());
     expect_vec(s.objects[0].max, {1, 1, 1});
 
-    // A mesh: keys validated and the file resolved next to the scene, then not supported yet.
-    std::ofstream(file)
-        << R"({"objects": [{"type": "mesh", "file": "bunny.obj", "smooth": false}]})";
+    // A mesh: the OBJ file is resolved next to the scene, and loaded.
+    std::ofstream(file) << R"({"objects": [{"type": "mesh", "file": "tri.obj", "smooth": false}]})";
     try {
         load_scene(file.string());
-        FAIL() << "mesh objects must be refused for now";
+        FAIL() << "a missing OBJ file must be refused";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()),
-                  file.string() + ": objects.0: mesh objects are not supported yet");
+        EXPECT_EQ(std::string(e.what()), file.string() + ": objects.0.file: cannot read " +
+                                             (dir / "tri.obj").string() +
+                                             ": No such file or directory");
     }
+    std::ofstream(dir / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    const SceneDesc m = load_scene(file.string());
+    ASSERT_NE(m.objects[0].mesh, nullptr);
+    EXPECT_EQ(m.objects[0].mesh->triangle_count(), 1u);
+    EXPECT_FALSE(m.objects[0].smooth);
     std::filesystem::remove_all(dir);
 }
 
@@ -629,7 +634,7 @@ const BadCase kBadCases[] = {
      "objects.0.smoth: unknown key (known: type, file, smooth, material, transform)"},
     {R"({"objects": [{"type": "mesh", "file": "x.obj"}]})",
      {},
-     "scenes/a.json: objects.0: mesh objects are not supported yet"},
+     "scenes/a.json: objects.0.file: cannot read scenes/x.obj: No such file or directory"},
     // overrides
     {R"({"objects": [{"type": "sphere"}]})",
      {"objects.0.radius=abc"},

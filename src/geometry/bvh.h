@@ -1,0 +1,216 @@
+// Bvh: a bounding volume hierarchy over any primitives given by their bounds. Binned SAH build,
+// a flat array of 32-byte nodes in depth-first order, and two traversals: nearest (ordered,
+// near child first, nothing beyond the nearest hit so far) and any (stops when told to).
+//
+// Standalone use (e.g. a benchmark over one mesh):
+//     std::vector<Bounds3> boxes = ...;              // one per triangle
+//     const Bvh bvh = Bvh::build(boxes);
+//     // primitive of leaf slot i: bvh.order()[i]
+//     uint64_t box_tests = 0;
+//     float t_max = inf;
+//     bvh.nearest(ray, 0.0f, t_max, box_tests, [&](uint32_t i, float& t_max) {
+//         /* test primitive bvh.order()[i]; on a hit at t < t_max, set t_max = t */ });
+// The scene's BVH (geometry/scene.h) keeps its primitives in leaf order, so slot i is the
+// primitive itself.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "math/bounds.h"
+#include "math/ray.h"
+
+namespace luz {
+
+/// 32 bytes: the box, and either a leaf's primitive range or an interior node's second child
+/// (the first child is the next node).
+struct BvhNode {
+    float lo[3];
+    uint32_t offset;  ///< leaf: first slot in Bvh::order(); interior: index of the second child
+    float hi[3];
+    uint32_t count;  ///< leaf: number of primitives (> 0); interior: 0
+
+    bool leaf() const { return count > 0; }
+};
+static_assert(sizeof(BvhNode) == 32);
+
+/// Build settings: SAH costs (a node visit costs `traversal_cost` primitive tests), bins per
+/// axis, and the leaf size above which a node is always split (if its primitives can be).
+struct BvhOptions {
+    int bins = 16;
+    float traversal_cost = 1.0f;
+    uint32_t max_leaf_size = 8;
+};
+
+class Bvh {
+  public:
+    /// Builds over primitives 0 … bounds.size()−1. Primitives with empty bounds cannot be hit
+    /// and are left out. Split by binned SAH over the centroids on all three axes; a node whose
+    /// centroids all coincide becomes a leaf; beyond depth 48 nodes split at the median.
+    static Bvh build(std::span<const Bounds3> bounds, const BvhOptions& options = {});
+
+    bool empty() const { return nodes_.empty(); }
+    const std::vector<BvhNode>& nodes() const { return nodes_; }
+    /// Primitive ids in leaf order: a leaf holds order()[offset … offset + count − 1].
+    const std::vector<uint32_t>& order() const { return order_; }
+    /// Bytes held by the nodes and the order.
+    size_t memory_bytes() const {
+        return nodes_.capacity() * sizeof(BvhNode) + order_.capacity() * sizeof(uint32_t);
+    }
+
+    /// Nearest-hit traversal of r in (t_min, t_max). test(slot, t_max) is called for every
+    /// slot of every leaf whose box r meets before t_max; it tests primitive order()[slot] and
+    /// lowers t_max on a hit. Of two children the nearer (by entry distance) is visited first;
+    /// a node entered beyond t_max (with a margin of 2^-16·t_max, so that ties are still
+    /// found) is skipped. Ray–box tests are added to box_tests.
+    template <class Test>
+    void nearest(const Ray& r, float t_min, float& t_max, uint64_t& box_tests, Test&& test) const;
+
+    /// Any-hit traversal of r in (t_min, t_max), in no particular order: visit(slot) is called
+    /// for every slot of every leaf whose box r meets; it returns true to stop. Returns whether
+    /// it was stopped.
+    template <class Visit>
+    bool any(const Ray& r, float t_min, float t_max, uint64_t& box_tests, Visit&& visit) const;
+
+    static constexpr int kMaxDepth = 96;  ///< traversal stack size (build depth stays below)
+
+  private:
+    std::vector<BvhNode> nodes_;
+    std::vector<uint32_t> order_;
+};
+
+namespace bvh_detail {
+
+/// A ray prepared for box tests: origin and 1/direction.
+struct BoxRay {
+    float o[3], inv[3];
+    explicit BoxRay(const Ray& r) {
+        for (int a = 0; a < 3; ++a) {
+            o[a] = r.origin[a];
+            inv[a] = 1.0f / r.direction[a];
+        }
+    }
+};
+
+/// 1 + 2γ₃ (γₙ = nε/(1 − nε), ε = 2⁻²⁴): scaling a slab's exit distance by it makes the test
+/// conservative despite rounding (Ize, "Robust BVH Ray Traversal", JCGT 2013; pbrt).
+inline constexpr float kExitScale = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
+
+/// Slab test of node n against r over [t_min, t_max]; the entry distance on a hit. A NaN
+/// (origin on a slab plane of a zero direction component) leaves the interval as it is.
+inline bool hit_node(const BvhNode& n, const BoxRay& r, float t_min, float t_max, float& entry) {
+    for (int a = 0; a < 3; ++a) {
+        float t0 = (n.lo[a] - r.o[a]) * r.inv[a];
+        float t1 = (n.hi[a] - r.o[a]) * r.inv[a];
+        if (t0 > t1) {
+            const float s = t0;
+            t0 = t1;
+            t1 = s;
+        }
+        t1 *= kExitScale;
+        t_min = t0 > t_min ? t0 : t_min;
+        t_max = t1 < t_max ? t1 : t_max;
+    }
+    entry = t_min;
+    return t_min <= t_max;
+}
+
+/// t_max with the margin within which nodes are still visited (ties between primitives).
+inline float with_margin(float t_max) { return t_max + t_max * 0x1p-16f; }
+
+}  // namespace bvh_detail
+
+template <class Test>
+void Bvh::nearest(const Ray& r, float t_min, float& t_max, uint64_t& box_tests, Test&& test) const {
+    using namespace bvh_detail;
+    if (nodes_.empty()) return;
+    const BoxRay br(r);
+    struct Entry {
+        uint32_t node;
+        float entry;
+    };
+    Entry stack[kMaxDepth];
+    int top = 0;
+    float entry;
+    ++box_tests;
+    if (!hit_node(nodes_[0], br, t_min, with_margin(t_max), entry)) return;
+    uint32_t node = 0;
+    for (;;) {
+        const BvhNode& n = nodes_[node];
+        if (n.leaf()) {
+            for (uint32_t i = n.offset, end = n.offset + n.count; i < end; ++i) test(i, t_max);
+        } else {
+            const uint32_t a = node + 1, b = n.offset;
+            float ea, eb;
+            const float limit = with_margin(t_max);
+            box_tests += 2;
+            const bool ha = hit_node(nodes_[a], br, t_min, limit, ea);
+            const bool hb = hit_node(nodes_[b], br, t_min, limit, eb);
+            if (ha && hb) {
+                // near child now, the far one later
+                if (eb < ea) {
+                    stack[top++] = {a, ea};
+                    node = b;
+                } else {
+                    stack[top++] = {b, eb};
+                    node = a;
+                }
+                continue;
+            }
+            if (ha || hb) {
+                node = ha ? a : b;
+                continue;
+            }
+        }
+        // next node from the stack, skipping those entered beyond the nearest hit so far
+        for (;;) {
+            if (top == 0) return;
+            const Entry e = stack[--top];
+            if (e.entry <= with_margin(t_max)) {
+                node = e.node;
+                break;
+            }
+        }
+    }
+}
+
+template <class Visit>
+bool Bvh::any(const Ray& r, float t_min, float t_max, uint64_t& box_tests, Visit&& visit) const {
+    using namespace bvh_detail;
+    if (nodes_.empty()) return false;
+    const BoxRay br(r);
+    uint32_t stack[kMaxDepth];
+    int top = 0;
+    float entry;
+    const float limit = with_margin(t_max);
+    ++box_tests;
+    if (!hit_node(nodes_[0], br, t_min, limit, entry)) return false;
+    uint32_t node = 0;
+    for (;;) {
+        const BvhNode& n = nodes_[node];
+        if (n.leaf()) {
+            for (uint32_t i = n.offset, end = n.offset + n.count; i < end; ++i)
+                if (visit(i)) return true;
+        } else {
+            const uint32_t a = node + 1, b = n.offset;
+            box_tests += 2;
+            const bool ha = hit_node(nodes_[a], br, t_min, limit, entry);
+            const bool hb = hit_node(nodes_[b], br, t_min, limit, entry);
+            if (ha && hb) {
+                stack[top++] = b;
+                node = a;
+                continue;
+            }
+            if (ha || hb) {
+                node = ha ? a : b;
+                continue;
+            }
+        }
+        if (top == 0) return false;
+        node = stack[--top];
+    }
+}
+
+}  // namespace luz

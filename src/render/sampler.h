@@ -1,0 +1,384 @@
+// Antialiasing of SPEC §1.2 — none, grid (box or tent filter, optional jitter) and adaptive —
+// independent of how a colour is computed: the samplers ask for "the colour at pixel-space point
+// (x, y)" and combine the answers. The ray pipelines use sample_image(); the zbuffer uses the
+// same positions, filter (filter_tile) and refinement (refine_tile) with its own rasterizer.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "image/image.h"
+#include "render/parallel.h"
+#include "render/render.h"
+#include "scene/scene_desc.h"
+
+namespace luz {
+
+/// Which pixels adaptive antialiasing refined and how deeply (`--aa-mask`).
+struct AaMask {
+    int width = 0, height = 0;
+    std::vector<uint8_t> level;  ///< per pixel, row-major: times split (0: not refined)
+};
+
+/// What a sampler counted in one work item; items are summed in order.
+struct SamplerCounts {
+    uint64_t samples = 0;         ///< colour evaluations
+    uint64_t pixels_refined = 0;  ///< adaptive: pixels split at least once
+
+    void add(const SamplerCounts& o) {
+        samples += o.samples;
+        pixels_refined += o.pixels_refined;
+    }
+};
+
+/// The pixels [x0, x1) × [y0, y1).
+struct PixelRect {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    int width() const { return x1 - x0; }
+    int height() const { return y1 - y0; }
+};
+
+/// Side of the square tiles the samplers work in (pixels).
+inline constexpr int kSamplerTile = 16;
+
+/// Seed of the jitter hash: a constant, so that every render of a scene is the same.
+inline constexpr uint64_t kJitterSeed = 0x6c757a2d6a697474ull;  // "luz-jitt"
+
+/// SplitMix64's finaliser: a bijective mix of 64 bits.
+inline uint64_t mix64(uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+/// Jitter offset in [0, 1) of sample `k` of pixel `pixel` (row-major index) along `axis`
+/// (0: x, 1: y): a hash of the three, never a shared random generator, so it does not depend
+/// on the order in which pixels are rendered.
+inline float jitter_offset(uint64_t pixel, uint32_t k, uint32_t axis) {
+    const uint64_t h = mix64(mix64(kJitterSeed ^ pixel) + (uint64_t{k} << 1 | axis));
+    return static_cast<float>(h >> 40) * 0x1p-24f;  // 24 bits: exact, < 1
+}
+
+/// Tent weight of one axis: max(0, 1 − |d|), d in pixels from the pixel's centre.
+inline float tent1(float d) { return std::max(0.0f, 1.0f - std::fabs(d)); }
+
+/// Tent weight of a sample (dx, dy) pixels from a pixel's centre (SPEC §1.2).
+inline float tent_weight(float dx, float dy) { return tent1(dx) * tent1(dy); }
+
+/// Grid sampling (SPEC §1.2): s² samples per pixel, sample (a, b) of pixel (i, j) at
+/// (i + (a+0.5)/s, j + (b+0.5)/s), or with jitter uniformly inside its cell.
+struct GridSpec {
+    int s = 1;
+    AaFilter filter = AaFilter::box;
+    bool jitter = false;
+    int width = 0, height = 0;  ///< the image's size
+
+    static GridSpec from(const AntialiasDesc& aa, int width, int height);
+
+    /// Position of sample (a, b) of pixel (i, j), in pixel coordinates.
+    void position(int i, int j, int a, int b, float& x, float& y) const {
+        float u = 0.5f, v = 0.5f;
+        if (jitter) {
+            const uint64_t pixel = static_cast<uint64_t>(j) * static_cast<uint64_t>(width) + i;
+            const auto k = static_cast<uint32_t>(b * s + a);
+            u = jitter_offset(pixel, k, 0);
+            v = jitter_offset(pixel, k, 1);
+        }
+        const float inv_s = 1.0f / static_cast<float>(s);
+        x = static_cast<float>(i) + (static_cast<float>(a) + u) * inv_s;
+        y = static_cast<float>(j) + (static_cast<float>(b) + v) * inv_s;
+    }
+
+    /// The pixels whose samples the pixels of `tile` need: the tile itself (box), or the tile
+    /// and a ring of one pixel around it, inside the image (tent).
+    PixelRect region(const PixelRect& tile) const;
+
+    /// Whether a sample at (x, y) weighs anything for some pixel of `tile` (always, for box and
+    /// inside the tile); samples of the tent's ring that weigh nothing need not be computed.
+    bool needed(const PixelRect& tile, float x, float y) const;
+};
+
+/// Combines the samples of the pixels of `region` into the pixels of `tile` of `out` with the
+/// grid's filter. `samples` holds (region.width()·s) × (region.height()·s) colours, row-major:
+/// sample (a, b) of pixel (i, j) at column (i − region.x0)·s + a, row (j − region.y0)·s + b.
+/// Samples that are not needed() are never read with a non-zero weight.
+void filter_tile(const GridSpec& g, const PixelRect& tile, const PixelRect& region,
+                 const Rgb* samples, Image& out);
+
+/// Adaptive sampling (SPEC §1.2): corner samples shared by neighbouring pixels, a pixel whose
+/// corners differ by more than `threshold` split into 4, recursively, up to `max_level` times.
+/// Sub-corners lie on the pixel's finest lattice: (i + k/S, j + l/S), S = 2^max_level.
+struct AdaptiveSpec {
+    float threshold = 0.1f;
+    int max_level = 3;
+    int width = 0, height = 0;  ///< the image's size
+
+    static AdaptiveSpec from(const AntialiasDesc& aa, int width, int height);
+    int lattice() const { return 1 << max_level; }  ///< S
+};
+
+/// Largest per-channel difference among four colours, on values clamped to [0, 1].
+inline float corner_difference(const Rgb& a, const Rgb& b, const Rgb& c, const Rgb& d) {
+    const Rgb ca = clamp01(a), cb = clamp01(b), cc = clamp01(c), cd = clamp01(d);
+    float diff = 0;
+    for (int ch = 0; ch < 3; ++ch) {
+        const float lo = std::min({ca[ch], cb[ch], cc[ch], cd[ch]});
+        const float hi = std::max({ca[ch], cb[ch], cc[ch], cd[ch]});
+        diff = std::max(diff, hi - lo);
+    }
+    return diff;
+}
+
+/// The sub-corners a tile's refined pixels have sampled, so that each is sampled once: those
+/// on pixel edges are shared with the neighbouring pixel of the same tile; those inside a pixel
+/// belong to it. Entries are stamped with a generation instead of being cleared. One per thread.
+class AdaptiveCache {
+  public:
+    struct Slot {
+        Rgb colour;
+        uint32_t stamp = 0;
+    };
+
+    /// Starts a tile: forgets every edge sub-corner.
+    void begin_tile(const PixelRect& tile, int S);
+    /// Starts pixel (i, j) of the tile: forgets the inner sub-corners.
+    void begin_pixel(int i, int j);
+    /// The slot of sub-corner (k, l) of the current pixel, 0 ≤ k, l ≤ S, not a pixel corner.
+    Slot& slot(int k, int l);
+    /// Whether `s` holds a colour sampled for this tile (edge) or pixel (inside).
+    bool valid(const Slot& s, int k, int l) const {
+        const bool edge = k == 0 || k == S_ || l == 0 || l == S_;
+        return s.stamp == (edge ? tile_gen_ : pixel_gen_);
+    }
+    /// Marks `s` as sampled.
+    void fill(Slot& s, int k, int l, const Rgb& c) {
+        const bool edge = k == 0 || k == S_ || l == 0 || l == S_;
+        s.colour = c;
+        s.stamp = edge ? tile_gen_ : pixel_gen_;
+    }
+
+    /// This thread's cache.
+    static AdaptiveCache& for_this_thread();
+
+  private:
+    uint32_t next_generation();
+
+    std::vector<Slot> rows_, cols_, inner_;  ///< horizontal edges, vertical edges, inside
+    PixelRect tile_;
+    int S_ = 1, li_ = 0, lj_ = 0;  ///< lattice, current pixel in the tile
+    uint32_t generation_ = 0, tile_gen_ = 0, pixel_gen_ = 0;
+};
+
+namespace detail {
+
+/// One pixel's recursive refinement over its sub-corner lattice.
+template <class Fine>
+struct Refiner {
+    const AdaptiveSpec& spec;
+    AdaptiveCache& cache;
+    Fine& fine;
+    SamplerCounts& counts;
+    int i, j, S, deepest = 0;
+
+    Rgb at(int k, int l) {
+        AdaptiveCache::Slot& s = cache.slot(k, l);
+        if (!cache.valid(s, k, l)) {
+            cache.fill(s, k, l, fine.colour(i, j, k, l));
+            ++counts.samples;
+        }
+        return s.colour;
+    }
+
+    /// The value of the (sub-)pixel [k, k+size] × [l, l+size] with corners c00 … c11:
+    /// the mean of its corners, or split into 4 and the mean of its parts.
+    Rgb value(int k, int l, int size, int level, const Rgb& c00, const Rgb& c10, const Rgb& c01,
+              const Rgb& c11) {
+        if (level < spec.max_level && corner_difference(c00, c10, c01, c11) > spec.threshold) {
+            deepest = std::max(deepest, level + 1);
+            const int h = size / 2;
+            const Rgb cm0 = at(k + h, l), c0m = at(k, l + h), cmm = at(k + h, l + h);
+            const Rgb c1m = at(k + size, l + h), cm1 = at(k + h, l + size);
+            const Rgb sum = value(k, l, h, level + 1, c00, cm0, c0m, cmm) +
+                            value(k + h, l, h, level + 1, cm0, c10, cmm, c1m) +
+                            value(k, l + h, h, level + 1, c0m, cmm, c01, cm1) +
+                            value(k + h, l + h, h, level + 1, cmm, c1m, cm1, c11);
+            return sum * 0.25f;
+        }
+        return (c00 + c10 + c01 + c11) * 0.25f;
+    }
+};
+
+}  // namespace detail
+
+/// Adaptive antialiasing of the pixels of `tile`. `corners` holds the (W+1)×(H+1) colours at
+/// the pixel corners (x, y integers), row-major. `fine` provides the rest:
+/// `fine.begin_pixel(i, j)` once before the first sub-corner of a refined pixel and
+/// `fine.colour(i, j, k, l)`, the colour at (i + k/S, j + l/S). Writes the pixels into `out`,
+/// their levels into `mask` (if any) and counts sub-corner samples and refined pixels.
+template <class Fine>
+void refine_tile(const AdaptiveSpec& spec, const PixelRect& tile, const Rgb* corners, Fine& fine,
+                 Image& out, AaMask* mask, SamplerCounts& counts) {
+    const int S = spec.lattice();
+    const size_t row = static_cast<size_t>(spec.width) + 1;
+    AdaptiveCache& cache = AdaptiveCache::for_this_thread();
+    cache.begin_tile(tile, S);
+    for (int j = tile.y0; j < tile.y1; ++j) {
+        for (int i = tile.x0; i < tile.x1; ++i) {
+            const Rgb* c = corners + static_cast<size_t>(j) * row + i;
+            const Rgb &c00 = c[0], &c10 = c[1], &c01 = c[row], &c11 = c[row + 1];
+            Rgb value;
+            int deepest = 0;
+            if (spec.max_level > 0 && corner_difference(c00, c10, c01, c11) > spec.threshold) {
+                cache.begin_pixel(i, j);
+                fine.begin_pixel(i, j);
+                detail::Refiner<Fine> r{spec, cache, fine, counts, i, j, S};
+                value = r.value(0, 0, S, 0, c00, c10, c01, c11);
+                deepest = r.deepest;
+                ++counts.pixels_refined;
+            } else {
+                value = (c00 + c10 + c01 + c11) * 0.25f;
+            }
+            out.at(i, j) = value;
+            if (mask) mask->level[static_cast<size_t>(j) * spec.width + i] = uint8_t(deepest);
+        }
+    }
+}
+
+/// The corners (x, y) that tile `tile` computes in the first adaptive pass: those of its
+/// pixels' top-left corners, and the image's last column and row for the tiles at its edge.
+inline PixelRect corner_rect(const PixelRect& tile, int width, int height) {
+    return {tile.x0, tile.y0, tile.x1 + (tile.x1 == width ? 1 : 0),
+            tile.y1 + (tile.y1 == height ? 1 : 0)};
+}
+
+/// Per-thread working memory of grid sampling: one tile's samples.
+std::vector<Rgb>& grid_scratch_for_this_thread();
+
+/// Renders an image with the antialiasing `aa`: `colour(x, y, counters)` gives the colour at
+/// pixel-space point (x, y) and may count into `counters` (one Counters per work item, in
+/// `counters`, to be summed by the caller). Square tiles are rendered in parallel; the result
+/// does not depend on the thread count. Fills `mask` (if any); returns the counts.
+template <class Counters, class Colour>
+SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
+                           const RenderControl& control, Colour&& colour, Image& out,
+                           std::vector<Counters>& counters, AaMask* mask) {
+    const int T = kSamplerTile;
+    const int tiles_x = (width + T - 1) / T, tiles_y = (height + T - 1) / T;
+    const size_t tile_count = static_cast<size_t>(tiles_x) * tiles_y;
+    const bool adaptive = aa.mode == AaMode::adaptive;
+    const size_t items = adaptive ? 2 * tile_count : tile_count;  // adaptive: two passes
+    counters.assign(items, Counters{});
+    std::vector<SamplerCounts> counts(items);
+    if (mask) {
+        mask->width = width;
+        mask->height = height;
+        mask->level.assign(static_cast<size_t>(width) * height, 0);
+    }
+    std::atomic<size_t> done{0};
+    auto tile_of = [&](size_t t) {
+        const int x0 = static_cast<int>(t % tiles_x) * T, y0 = static_cast<int>(t / tiles_x) * T;
+        return PixelRect{x0, y0, std::min(width, x0 + T), std::min(height, y0 + T)};
+    };
+    auto cancelled = [&] {
+        return control.cancel && control.cancel->load(std::memory_order_relaxed);
+    };
+    auto report = [&] {
+        if (control.progress) control.progress(static_cast<double>(++done) / items);
+    };
+
+    switch (aa.mode) {
+        case AaMode::none:
+            parallel_items(control.threads, tile_count, [&](size_t t) {
+                if (cancelled()) return;
+                const PixelRect r = tile_of(t);
+                for (int y = r.y0; y < r.y1; ++y)
+                    for (int x = r.x0; x < r.x1; ++x)
+                        out.at(x, y) = colour(x + 0.5f, y + 0.5f, counters[t]);
+                counts[t].samples = static_cast<uint64_t>(r.width()) * r.height();
+                report();
+            });
+            break;
+        case AaMode::grid: {
+            const GridSpec g = GridSpec::from(aa, width, height);
+            parallel_items(control.threads, tile_count, [&](size_t t) {
+                if (cancelled()) return;
+                const PixelRect tile = tile_of(t), region = g.region(tile);
+                const int s = g.s, stride = region.width() * s;
+                std::vector<Rgb>& buf = grid_scratch_for_this_thread();
+                buf.resize(static_cast<size_t>(stride) * region.height() * s);
+                for (int j = region.y0; j < region.y1; ++j) {
+                    for (int i = region.x0; i < region.x1; ++i) {
+                        const bool inside =
+                            i >= tile.x0 && i < tile.x1 && j >= tile.y0 && j < tile.y1;
+                        for (int b = 0; b < s; ++b) {
+                            Rgb* dst = &buf[static_cast<size_t>((j - region.y0) * s + b) * stride +
+                                            (i - region.x0) * s];
+                            for (int a = 0; a < s; ++a) {
+                                float x, y;
+                                g.position(i, j, a, b, x, y);
+                                if (inside || g.needed(tile, x, y)) {
+                                    dst[a] = colour(x, y, counters[t]);
+                                    ++counts[t].samples;
+                                } else {
+                                    dst[a] = Rgb{0.0f};
+                                }
+                            }
+                        }
+                    }
+                }
+                filter_tile(g, tile, region, buf.data(), out);
+                report();
+            });
+            break;
+        }
+        case AaMode::adaptive: {
+            // Pass 1: one sample at every pixel corner, each computed once.
+            std::vector<Rgb> corners(static_cast<size_t>(width + 1) * (height + 1));
+            parallel_items(control.threads, tile_count, [&](size_t t) {
+                if (cancelled()) return;
+                const PixelRect c = corner_rect(tile_of(t), width, height);
+                for (int y = c.y0; y < c.y1; ++y)
+                    for (int x = c.x0; x < c.x1; ++x)
+                        corners[static_cast<size_t>(y) * (width + 1) + x] =
+                            colour(static_cast<float>(x), static_cast<float>(y), counters[t]);
+                counts[t].samples = static_cast<uint64_t>(c.width()) * c.height();
+                report();
+            });
+            // Pass 2: refine the pixels whose corners differ.
+            const AdaptiveSpec spec = AdaptiveSpec::from(aa, width, height);
+            const float inv_S = 1.0f / static_cast<float>(spec.lattice());
+            parallel_items(control.threads, tile_count, [&](size_t t) {
+                if (cancelled()) return;
+                Counters& c = counters[tile_count + t];
+                struct Fine {
+                    Colour& fn;
+                    Counters& c;
+                    float inv_S;
+                    void begin_pixel(int, int) {}
+                    Rgb colour(int i, int j, int k, int l) {
+                        return fn(static_cast<float>(i) + static_cast<float>(k) * inv_S,
+                                  static_cast<float>(j) + static_cast<float>(l) * inv_S, c);
+                    }
+                };
+                Fine fine{colour, c, inv_S};
+                refine_tile(spec, tile_of(t), corners.data(), fine, out, mask,
+                            counts[tile_count + t]);
+                report();
+            });
+            break;
+        }
+    }
+    SamplerCounts total;
+    for (const SamplerCounts& c : counts) total.add(c);
+    return total;
+}
+
+/// An image that shows which pixels adaptive antialiasing refined and how deeply: pixels not
+/// refined in dim grey (a quarter of the render's luminance), refined ones in a colour per
+/// level: 1 blue, 2 cyan, 3 green, 4 yellow, 5 orange, 6 red.
+Image aa_mask_image(const AaMask& mask, const Image& render);
+
+}  // namespace luz

@@ -1,0 +1,44 @@
+// Wavefront OBJ and MTL input (SPEC §2 `mesh`): tinyobjloader parses and triangulates, after a
+// light pass of our own that checks every number and index and names FILE:LINE on bad input.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scene/input_error.h"
+#include "scene/mesh_data.h"
+
+namespace luz {
+
+/// Reads the file at `path` whole; on failure returns nullopt and sets `reason` (e.g. "No such
+/// file or directory").
+using TextReader =
+    std::function<std::optional<std::string>(const std::string& path, std::string& reason)>;
+
+/// Reads a file from disk (the default TextReader).
+std::optional<std::string> read_text_file(const std::string& path, std::string& reason);
+
+/// Parses the OBJ text of `file` (`file` labels messages and locates MTL files: `mtllib` names
+/// are relative to its folder; `read` reads them). Polygons are triangulated; `v`, `vn`, `f`,
+/// `usemtl` and `mtllib` are used, other statements ignored. With `with_materials` false the MTL
+/// files are not read and every face has material −1.
+///
+/// MTL mapping (SPEC §2): Ka, Kd, Ks → ka, kd, ks (clamped to [0, 1]); Ns → n (Ns ≤ 0 → 1);
+/// Ni → ior (below 1 → 1); d → transparency = 1 − d, or Tr → transparency = Tr (d wins);
+/// illum 3–7 → reflection = mean of Ks. Keys a material omits keep the default material's.
+///
+/// Throws InputError "FILE:LINE: what" on a malformed number, a non-finite coordinate, a bad
+/// or out-of-range index, or a face with fewer than 3 vertices (MTL errors name the MTL file).
+/// A missing MTL file, an unknown `usemtl` name, a clamped MTL value and a file without faces
+/// are warnings ("FILE:LINE: what"), appended to `warnings`.
+MeshData parse_obj(std::string_view text, const std::string& file, bool with_materials,
+                   const TextReader& read, std::vector<std::string>& warnings);
+
+/// Reads and parses the OBJ file at `path` (and its MTL files) from disk. A missing or
+/// unreadable OBJ file throws InputError "PATH: cannot read: reason".
+MeshData load_obj(const std::string& path, bool with_materials, std::vector<std::string>& warnings);
+
+}  // namespace luz

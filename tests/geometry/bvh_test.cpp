@@ -1,0 +1,404 @@
+// The BVH against brute force: the same nearest hit (t, shape, triangle) and the same shadow
+// answers for 100 000 random rays per scene, on random and degenerate meshes (zero-area
+// triangles, every triangle in one plane, duplicated triangles) mixed with other shapes; and
+// the structure of the tree itself.
+#include "geometry/bvh.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <functional>
+#include <memory>
+#include <random>
+
+#include "geometry/scene.h"
+#include "geometry/scene_query.h"
+
+namespace luz {
+namespace {
+
+using Rng = std::mt19937;
+
+float uniform(Rng& rng, float lo, float hi) {
+    return std::uniform_real_distribution<float>(lo, hi)(rng);
+}
+Vec3 random_point(Rng& rng, float lo, float hi) {
+    return {uniform(rng, lo, hi), uniform(rng, lo, hi), uniform(rng, lo, hi)};
+}
+Vec3 random_direction(Rng& rng) {
+    for (;;) {
+        const Vec3 d = random_point(rng, -1, 1);
+        const float l = length(d);
+        if (l > 0.05f && l <= 1) return d / l;
+    }
+}
+
+/// A mesh object from triangle vertex triples (vertices shared where the triples share them).
+ObjectDesc mesh_object(const std::vector<Vec3>& positions, const std::vector<uint32_t>& index,
+                       int material, bool smooth = false) {
+    auto data = std::make_shared<MeshData>();
+    data->file = "test.obj";
+    data->positions = positions;
+    data->position = index;
+    data->normal.assign(index.size(), -1);
+    data->material.assign(index.size() / 3, -1);
+    ObjectDesc o;
+    o.type = ShapeType::mesh;
+    o.material = material;
+    o.smooth = smooth;
+    o.mesh = data;
+    return o;
+}
+
+/// A triangle soup: n random triangles of random sizes in [−4, 4]³.
+ObjectDesc random_soup(Rng& rng, int n, int material) {
+    std::vector<Vec3> p;
+    std::vector<uint32_t> idx;
+    for (int t = 0; t < n; ++t) {
+        const Vec3 c = random_point(rng, -4, 4);
+        const float size = uniform(rng, 0.05f, 1.2f);
+        for (int k = 0; k < 3; ++k) {
+            idx.push_back(static_cast<uint32_t>(p.size()));
+            p.push_back(c + random_point(rng, -size, size));
+        }
+    }
+    return mesh_object(p, idx, material);
+}
+
+/// A grid of n×n quads in the plane z = z0 (shared vertices), as two triangles each.
+ObjectDesc planar_grid(int n, float z0, int material) {
+    std::vector<Vec3> p;
+    std::vector<uint32_t> idx;
+    const float s = 8.0f / n;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) p.push_back({-4 + i * s, -4 + j * s, z0});
+    const auto at = [n](int i, int j) { return static_cast<uint32_t>(j * (n + 1) + i); };
+    for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+            idx.insert(idx.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            idx.insert(idx.end(), {at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    }
+    return mesh_object(p, idx, material);
+}
+
+/// Degenerate triangles: zero-area ones (a repeated vertex, collinear vertices, a point),
+/// and every triangle of `base` twice (the copy later in the index list, reversed).
+ObjectDesc degenerate_mesh(Rng& rng, const ObjectDesc& base, int zero_area, int material) {
+    std::vector<Vec3> p = base.mesh->positions;
+    std::vector<uint32_t> idx = base.mesh->position;
+    const size_t n = idx.size();
+    for (size_t c = 0; c < n; c += 3) idx.insert(idx.end(), {idx[c], idx[c + 2], idx[c + 1]});
+    for (int t = 0; t < zero_area; ++t) {
+        const Vec3 a = random_point(rng, -4, 4), b = random_point(rng, -4, 4);
+        const uint32_t i = static_cast<uint32_t>(p.size());
+        switch (t % 3) {
+            case 0:  // a repeated vertex
+                p.insert(p.end(), {a, b});
+                idx.insert(idx.end(), {i, i + 1, i});
+                break;
+            case 1:  // collinear
+                p.insert(p.end(), {a, b, (a + b) * 0.5f});
+                idx.insert(idx.end(), {i, i + 1, i + 2});
+                break;
+            default:  // one point
+                p.push_back(a);
+                idx.insert(idx.end(), {i, i, i});
+                break;
+        }
+    }
+    return mesh_object(p, idx, material);
+}
+
+/// Materials: 0 default (opaque), 1 glass (transparency 0.7), 2 water (0.35); not powers of
+/// two, so that the order of multiplication would show in the products.
+SceneDesc scene_with(std::vector<ObjectDesc> objects) {
+    SceneDesc d;
+    d.render.pipeline = Pipeline::raytrace;
+    d.render.accel = Accel::bvh;
+    d.materials.resize(3);
+    d.materials[1].transparency = 0.7f;
+    d.materials[2].transparency = 0.35f;
+    for (size_t i = 0; i < objects.size(); ++i) objects[i].path = "objects." + std::to_string(i);
+    d.objects = std::move(objects);
+    return d;
+}
+
+ObjectDesc sphere(Vec3 c, float r, int material) {
+    ObjectDesc o;
+    o.type = ShapeType::sphere;
+    o.center = c;
+    o.radius = r;
+    o.material = material;
+    return o;
+}
+
+/// Random rays: from points in [−6, 6]³ in random directions; every fourth aimed exactly at a
+/// mesh vertex (where triangles meet and ties happen) and every eighth a segment (for shadows).
+struct RandomRays {
+    std::vector<Vec3> targets;
+    Rng rng{12345};
+    Ray next(int k, float& t_max) {
+        Ray r{random_point(rng, -6, 6), random_direction(rng)};
+        t_max = std::numeric_limits<float>::infinity();
+        if (k % 4 == 0 && !targets.empty()) {
+            const Vec3 to = targets[rng() % targets.size()] - r.origin;
+            if (length(to) > 0) r.direction = normalize(to);
+        }
+        if (k % 8 == 1) t_max = uniform(rng, 0.5f, 12.0f);
+        return r;
+    }
+};
+
+/// Runs `rays` random rays through both accelerations; every answer must be the same.
+void expect_bvh_equals_brute_force(const SceneDesc& desc, int rays) {
+    const Scene bvh = build_scene(desc);
+    ASSERT_TRUE(bvh.has_bvh);
+    ASSERT_GT(bvh.bvh.nodes().size(), 1u);
+    Scene all = bvh;
+    all.desc.render.accel = Accel::none;
+
+    RandomRays gen;
+    for (const Shape& s : bvh.shapes) {
+        if (s.mesh) {
+            gen.targets.insert(gen.targets.end(), s.mesh->positions.begin(),
+                               s.mesh->positions.end());
+        }
+    }
+    IntersectCounters cb, ca;
+    int hits = 0, shadowed = 0, partial = 0, mismatches = 0;
+    for (int k = 0; k < rays; ++k) {
+        float t_max;
+        const Ray r = gen.next(k, t_max);
+        Hit hb, ha;
+        const bool fb = nearest_hit(bvh, r, 0.0f, t_max, hb, cb);
+        const bool fa = nearest_hit(all, r, 0.0f, t_max, ha, ca);
+        const bool same = fb == fa && (!fb || (hb.t == ha.t && hb.shape == ha.shape &&
+                                               hb.part == ha.part && hb.u == ha.u && hb.v == ha.v));
+        const float Tb = transmittance(bvh, r, 0.0f, t_max, cb);
+        const float Ta = transmittance(all, r, 0.0f, t_max, ca);
+        if (!same || std::memcmp(&Tb, &Ta, sizeof(float)) != 0) {
+            if (++mismatches <= 5) {
+                ADD_FAILURE() << "ray " << k << " from (" << r.origin.x << ", " << r.origin.y
+                              << ", " << r.origin.z << ") dir (" << r.direction.x << ", "
+                              << r.direction.y << ", " << r.direction.z << "): bvh " << fb
+                              << " t=" << hb.t << " shape " << hb.shape << " part " << hb.part
+                              << " T=" << Tb << "; all " << fa << " t=" << ha.t << " shape "
+                              << ha.shape << " part " << ha.part << " T=" << Ta;
+            }
+        }
+        hits += fa;
+        shadowed += Ta == 0;
+        partial += Ta > 0 && Ta < 1;
+    }
+    EXPECT_EQ(mismatches, 0);
+    // The rays did meet things, and the BVH tested far fewer primitives.
+    EXPECT_GT(hits, rays / 5);
+    EXPECT_GT(shadowed, rays / 20);
+    EXPECT_GT(partial, rays / 100);
+    EXPECT_LT(cb.primitive * 5, ca.primitive);
+    ::testing::Test::RecordProperty("primitive_tests_bvh", std::to_string(cb.primitive));
+    ::testing::Test::RecordProperty("primitive_tests_all", std::to_string(ca.primitive));
+}
+
+TEST(BvhEqualsBruteForce, RandomMeshesAndShapes) {
+    Rng rng(1);
+    std::vector<ObjectDesc> objects = {random_soup(rng, 300, 0), random_soup(rng, 150, 1),
+                                       sphere({1, 1, 1}, 1.5f, 1), sphere({-2, 2, -1}, 0.7f, 0)};
+    ObjectDesc box;
+    box.type = ShapeType::box;
+    box.min = {2, -3, -3};
+    box.max = {3, -1, 0};
+    box.material = 2;
+    objects.push_back(box);
+    ObjectDesc plane;
+    plane.type = ShapeType::plane;
+    plane.point = {0, -5, 0};
+    plane.material = 2;
+    objects.push_back(plane);
+    expect_bvh_equals_brute_force(scene_with(objects), 100000);
+}
+
+TEST(BvhEqualsBruteForce, AllTrianglesInOnePlane) {
+    Rng rng(2);
+    // a regular grid (shared edges and vertices), and random triangles lying in the same plane
+    ObjectDesc soup = random_soup(rng, 200, 1);
+    auto data = std::make_shared<MeshData>(*soup.mesh);
+    for (Vec3& p : data->positions) p.z = 0.0f;
+    soup.mesh = data;
+    expect_bvh_equals_brute_force(scene_with({planar_grid(16, 0.0f, 0), soup}), 100000);
+}
+
+TEST(BvhEqualsBruteForce, ZeroAreaAndDuplicatedTriangles) {
+    Rng rng(3);
+    const ObjectDesc soup = random_soup(rng, 150, 0);
+    const ObjectDesc grid = planar_grid(8, 1.0f, 1);
+    // the same triangles twice in one mesh, and again as another object
+    expect_bvh_equals_brute_force(
+        scene_with({degenerate_mesh(rng, soup, 100, 0), degenerate_mesh(rng, grid, 60, 1), soup,
+                    sphere({0, 0, 1}, 1.0f, 2)}),
+        100000);
+}
+
+TEST(BvhEqualsBruteForce, ShadowProductsDoNotDependOnTheOrderOfCrossings) {
+    // 40 stacked transparent layers of four materials, interleaved: the BVH meets them in
+    // space order, testing everything meets them object by object; the float products must
+    // still be the same bits.
+    SceneDesc d = scene_with({});
+    d.materials.resize(5);
+    const float tau[4] = {0.7f, 0.35f, 0.9f, 0.61f};
+    for (int m = 0; m < 4; ++m) d.materials[m + 1].transparency = tau[m];
+    for (int m = 0; m < 4; ++m) {
+        std::vector<Vec3> p;
+        std::vector<uint32_t> idx;
+        for (int k = 0; k < 10; ++k) {
+            const float z = 0.1f * (4 * k + (m * 3) % 4);
+            const uint32_t i = static_cast<uint32_t>(p.size());
+            p.insert(p.end(), {{-9, -9, z}, {9, -9, z}, {0, 9, z}});
+            idx.insert(idx.end(), {i, i + 1, i + 2});
+        }
+        d.objects.push_back(mesh_object(p, idx, m + 1));
+    }
+    const Scene bvh = build_scene(d);
+    Scene all = bvh;
+    all.desc.render.accel = Accel::none;
+    Rng rng(7);
+    IntersectCounters c;
+    for (int k = 0; k < 2000; ++k) {
+        const Vec3 o{uniform(rng, -1, 1), uniform(rng, -1, 1), -1};
+        const Vec3 to{uniform(rng, -1, 1), uniform(rng, -1, 1), 6};
+        const Ray r{o, normalize(to - o)};
+        const float Tb = transmittance(bvh, r, 0.0f, length(to - o), c);
+        const float Ta = transmittance(all, r, 0.0f, length(to - o), c);
+        ASSERT_EQ(std::memcmp(&Tb, &Ta, sizeof(float)), 0) << k << ": " << Tb << " vs " << Ta;
+        ASSERT_NEAR(Ta, std::pow(0.7 * 0.35 * 0.9 * 0.61, 10), 1e-9);
+    }
+}
+
+// ---- the tree itself ------------------------------------------------------------------------
+
+bool contains(const BvhNode& n, const Bounds3& b) {
+    for (int a = 0; a < 3; ++a)
+        if (b.lo[a] < n.lo[a] || b.hi[a] > n.hi[a]) return false;
+    return true;
+}
+
+/// Checks every node: children inside parents, primitives inside their leaf, each primitive in
+/// exactly one leaf; returns the depth.
+int check_tree(const Bvh& bvh, const std::vector<Bounds3>& boxes, uint32_t node,
+               std::vector<int>& seen) {
+    const BvhNode& n = bvh.nodes()[node];
+    if (n.leaf()) {
+        for (uint32_t i = n.offset; i < n.offset + n.count; ++i) {
+            const uint32_t id = bvh.order()[i];
+            EXPECT_TRUE(contains(n, boxes[id]));
+            ++seen[id];
+        }
+        return 1;
+    }
+    const uint32_t a = node + 1, b = n.offset;
+    EXPECT_GT(b, a);
+    Bounds3 ba, bb;
+    for (int k = 0; k < 3; ++k) {
+        ba.lo[k] = bvh.nodes()[a].lo[k];
+        ba.hi[k] = bvh.nodes()[a].hi[k];
+        bb.lo[k] = bvh.nodes()[b].lo[k];
+        bb.hi[k] = bvh.nodes()[b].hi[k];
+    }
+    EXPECT_TRUE(contains(n, ba));
+    EXPECT_TRUE(contains(n, bb));
+    return 1 + std::max(check_tree(bvh, boxes, a, seen), check_tree(bvh, boxes, b, seen));
+}
+
+TEST(Bvh, EveryPrimitiveInOneLeafInsideEveryAncestor) {
+    Rng rng(4);
+    std::vector<Bounds3> boxes;
+    for (int i = 0; i < 5000; ++i) {
+        const Vec3 c = random_point(rng, -10, 10), e = random_point(rng, 0, 0.5f);
+        boxes.push_back({c - e, c + e});
+    }
+    boxes.push_back(Bounds3{});  // empty: left out
+    const Bvh bvh = Bvh::build(boxes);
+    std::vector<int> seen(boxes.size(), 0);
+    const int depth = check_tree(bvh, boxes, 0, seen);
+    for (size_t i = 0; i + 1 < boxes.size(); ++i) EXPECT_EQ(seen[i], 1) << i;
+    EXPECT_EQ(seen.back(), 0);
+    EXPECT_EQ(bvh.order().size(), boxes.size() - 1);
+    EXPECT_LT(depth, 40);
+    // SAH leaves are small; nodes: at most 2n − 1
+    EXPECT_LE(bvh.nodes().size(), 2 * bvh.order().size() - 1);
+    for (const BvhNode& n : bvh.nodes()) {
+        if (n.leaf()) {
+            EXPECT_LE(n.count, BvhOptions{}.max_leaf_size);
+        }
+    }
+    EXPECT_EQ(bvh.memory_bytes(),
+              bvh.nodes().capacity() * sizeof(BvhNode) + bvh.order().capacity() * 4);
+}
+
+TEST(Bvh, EmptyAndCoincidentInputs) {
+    EXPECT_TRUE(Bvh::build({}).empty());
+    const std::vector<Bounds3> same(1000, Bounds3{{0, 0, 0}, {1, 1, 1}});
+    const Bvh one = Bvh::build(same);  // nothing to split: a single leaf
+    ASSERT_EQ(one.nodes().size(), 1u);
+    EXPECT_EQ(one.nodes()[0].count, 1000u);
+    uint64_t tests = 0;
+    int visited = 0;
+    float t_max = 100;
+    one.nearest({{0.5f, 0.5f, -1}, {0, 0, 1}}, 0.0f, t_max, tests,
+                [&](uint32_t, float&) { ++visited; });
+    EXPECT_EQ(visited, 1000);
+    EXPECT_EQ(tests, 1u);
+}
+
+TEST(Bvh, DeepChainsStayWithinTheTraversalStack) {
+    // boxes of doubling sizes around one point: SAH would peel one at a time
+    std::vector<Bounds3> boxes;
+    for (int i = 0; i < 120; ++i) {
+        const float s = std::ldexp(1.0f, i - 60);
+        boxes.push_back({Vec3{s}, Vec3{s * 1.5f}});
+    }
+    const Bvh bvh = Bvh::build(boxes);
+    std::vector<int> seen(boxes.size(), 0);
+    EXPECT_LT(check_tree(bvh, boxes, 0, seen), Bvh::kMaxDepth);
+}
+
+TEST(Bvh, NearestVisitsNearChildrenFirstAndSkipsWhatLiesBeyond) {
+    // a row of unit boxes along x; a ray along +x hits box 0 first and stops there
+    std::vector<Bounds3> boxes;
+    for (int i = 0; i < 64; ++i) boxes.push_back({{2.0f * i, 0, 0}, {2.0f * i + 1, 1, 1}});
+    const Bvh bvh = Bvh::build(boxes);
+    uint64_t tests = 0;
+    std::vector<uint32_t> order;
+    float t_max = std::numeric_limits<float>::infinity();
+    bvh.nearest({{-1, 0.5f, 0.5f}, {1, 0, 0}}, 0.0f, t_max, tests, [&](uint32_t slot, float& t) {
+        const uint32_t id = bvh.order()[slot];
+        order.push_back(id);
+        t = std::min(t, 2.0f * id + 1);  // the entry distance of box id
+    });
+    ASSERT_FALSE(order.empty());
+    EXPECT_EQ(order.front(), 0u);
+    EXPECT_LE(order.size(), 8u);  // one leaf or so, not all 64
+    // the same ray the other way round starts from the last box
+    order.clear();
+    t_max = std::numeric_limits<float>::infinity();
+    bvh.nearest({{200, 0.5f, 0.5f}, {-1, 0, 0}}, 0.0f, t_max, tests, [&](uint32_t slot, float& t) {
+        const uint32_t id = bvh.order()[slot];
+        order.push_back(id);
+        t = std::min(t, 200.0f - (2.0f * id + 1));
+    });
+    ASSERT_FALSE(order.empty());
+    EXPECT_EQ(*std::max_element(order.begin(), order.end()), 63u);
+    EXPECT_LE(order.size(), 8u);
+    // any() stops when told to
+    int visits = 0;
+    EXPECT_TRUE(bvh.any({{-1, 0.5f, 0.5f}, {1, 0, 0}}, 0.0f, 1000.0f, tests,
+                        [&](uint32_t) { return ++visits == 3; }));
+    EXPECT_EQ(visits, 3);
+    EXPECT_FALSE(
+        bvh.any({{-1, 5, 0.5f}, {1, 0, 0}}, 0.0f, 1000.0f, tests, [&](uint32_t) { return true; }));
+}
+
+}  // namespace
+}  // namespace luz
