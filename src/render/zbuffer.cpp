@@ -312,8 +312,8 @@ Lighting lighting_of(const SceneDesc& desc) {
 
 /// The colour of one fragment: the background, a light sphere's clamped colour, or shade() at
 /// its point (counted as a sample).
-Rgb shade_fragment(const Frame& f, const Lighting& lighting, const Fragment& frag,
-                   RenderStats& stats) {
+[[gnu::always_inline]] inline Rgb shade_fragment(const Frame& f, const Lighting& lighting,
+                                                 const Fragment& frag, RenderStats& stats) {
     const SceneDesc& desc = f.scene.desc;
     const TriangleMesh& mesh = f.geometry.mesh;
     if (frag.triangle == kNoTriangle) return desc.image.background;
@@ -339,10 +339,15 @@ Rgb shade_fragment(const Frame& f, const Lighting& lighting, const Fragment& fra
 void shade_tile(const Frame& f, int x0, int y0, int w, int h, const Fragment* frags, Image& out,
                 RenderStats& stats) {
     const Lighting lighting = lighting_of(f.scene.desc);
-    for (int j = 0; j < h; ++j)
-        for (int i = 0; i < w; ++i)
-            out.at(x0 + i, y0 + j) =
-                shade_fragment(f, lighting, frags[static_cast<size_t>(j) * w + i], stats);
+    const Rgb background = f.scene.desc.image.background;
+    for (int j = 0; j < h; ++j) {
+        Rgb* row = &out.at(x0, y0 + j);
+        const Fragment* frag = frags + static_cast<size_t>(j) * w;
+        for (int i = 0; i < w; ++i) {
+            row[i] = frag[i].triangle == kNoTriangle ? background
+                                                     : shade_fragment(f, lighting, frag[i], stats);
+        }
+    }
 }
 
 constexpr Fragment kEmptyFragment{std::numeric_limits<float>::infinity(), kNoTriangle, 0, 0};
