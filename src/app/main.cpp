@@ -8,6 +8,7 @@
 #include "app/cli_options.h"
 #include "app/list_commands.h"
 #include "app/render_command.h"
+#include "app/view_command.h"
 #include "image/image_io.h"
 #include "scene/input_error.h"
 
@@ -41,9 +42,9 @@ int run(int argc, char** argv) {
 
     CLI::App* scenes = app.add_subcommand("scenes", "list the built-in scenes (demo:NAME)");
     CLI::App* materials = app.add_subcommand("materials", "list the material presets");
-    std::string view_scene;
-    CLI::App* view = app.add_subcommand("view", "interactive window (not in this version)");
-    view->add_option("SCENE", view_scene, "scene file, or demo:NAME");
+    luz::ViewOptions view_options;
+    CLI::App* view = app.add_subcommand("view", "interactive window: edit the scene live");
+    luz::add_view_options(*view, view_options);
 
     // CLI11 would only say "A subcommand is required" for a misspelt command
     const auto is_command = [&](const std::string& name) {
@@ -73,10 +74,7 @@ int run(int argc, char** argv) {
         luz::print_materials(stdout);
         return 0;
     }
-    if (*view) {
-        print_error_line("luz view: the interactive viewer is not implemented in this version");
-        return 1;
-    }
+    if (*view) return luz::run_view(view_options);
     return luz::run_render(render_options);
 }
 

@@ -82,7 +82,7 @@ void offer_triangle(const WatertightRay& w, const Vec3& p0, const Vec3& p1, cons
 bool nearest_bvh(const Scene& scene, const Ray& r, float t_min, Best& best,
                  IntersectCounters& counters) {
     for (uint32_t i : scene.unbounded) offer_shape(scene, i, r, t_min, best, counters);
-    const WatertightRay w = prepare_watertight(r);
+    const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
     float t_max = best.t;
     scene.bvh.nearest(r, t_min, t_max, counters.bounds, [&](uint32_t slot, float& limit) {
         const BvhPrim& p = scene.bvh_prims[slot];
@@ -99,7 +99,7 @@ bool nearest_bvh(const Scene& scene, const Ray& r, float t_min, Best& best,
 bool nearest_all(const Scene& scene, const Ray& r, float t_min, Best& best,
                  IntersectCounters& counters) {
     const Vec3 inv_dir = inverse_direction(r.direction);
-    const WatertightRay w = prepare_watertight(r);
+    const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
     for (size_t k = 0; k < scene.shapes.size(); ++k) {
         const Shape& s = scene.shapes[k];
         const uint32_t i = static_cast<uint32_t>(k);
@@ -204,7 +204,7 @@ float transmittance_bvh(const Scene& scene, const Ray& r, float t_min, float t_m
     for (uint32_t i : scene.unbounded) {
         if (!cross_shape(scene, i, r, t_min, t_max, crossings, counters)) return 0.0f;
     }
-    const WatertightRay w = prepare_watertight(r);
+    const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
     const bool blocked = scene.bvh.any(r, t_min, t_max, counters.bounds, [&](uint32_t slot) {
         const BvhPrim& p = scene.bvh_prims[slot];
         if (p.triangle != BvhPrim::kNotTriangle) {
@@ -219,7 +219,7 @@ float transmittance_bvh(const Scene& scene, const Ray& r, float t_min, float t_m
 float transmittance_all(const Scene& scene, const Ray& r, float t_min, float t_max,
                         IntersectCounters& counters) {
     const Vec3 inv_dir = inverse_direction(r.direction);
-    const WatertightRay w = prepare_watertight(r);
+    const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
     Crossings crossings;
     for (size_t k = 0; k < scene.shapes.size(); ++k) {
         const Shape& s = scene.shapes[k];

@@ -69,8 +69,22 @@ int RayTracer::nearest_light(const Ray& ray, float& t_max, TraceCounters& counte
     return nearest;
 }
 
-Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& distance) const {
+Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& distance,
+                     RayTree* tree) const {
     const SceneDesc& desc = scene_.desc;
+    // Ray-tree recording (viewer only): this ray's node, filled as the numbers are computed.
+    int self = -1;
+    if (tree) {
+        self = static_cast<int>(tree->nodes.size());
+        RayTreeNode& n = tree->nodes.emplace_back();
+        n.depth = depth;
+        n.origin = ray.origin;
+        n.direction = ray.direction;
+    }
+    auto record = [&](const Rgb& c) {
+        if (tree) tree->nodes[self].color = c;
+        return c;
+    };
     // Nearest hit among objects and visible lights.
     float t_max = kInfinity;
     Hit hit;
@@ -78,8 +92,14 @@ Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& 
     if (hit_object) t_max = hit.t;
     const int light = nearest_light(ray, t_max, counters);
     distance = t_max;
-    if (light >= 0) return clamp01(desc.lights[light].intensity);
-    if (!hit_object) return desc.image.background;
+    if (tree) {
+        RayTreeNode& n = tree->nodes[self];
+        n.t = t_max;
+        n.hit = light >= 0 ? RayHit::light : hit_object ? RayHit::object : RayHit::background;
+        n.light = light;
+    }
+    if (light >= 0) return record(clamp01(desc.lights[light].intensity));
+    if (!hit_object) return record(desc.image.background);
 
     // The local model at P, with S = −ray.direction and shadow rays (raytrace).
     const Shape& shape = scene_.shapes[hit.shape];
@@ -87,6 +107,18 @@ Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& 
     const SurfacePoint sp = surface_at(shape, ray, hit);
     const Vec3 D = ray.direction;
     const ShadingPoint p{sp.P, sp.N, sp.Ng, -D, &m};
+    ShadeTerms terms;
+    ShadeTerms* terms_out = nullptr;
+    if (tree) {
+        RayTreeNode& n = tree->nodes[self];
+        n.object = static_cast<int>(hit.shape);
+        n.material = static_cast<int>(&m - desc.materials.data());
+        n.P = sp.P;
+        n.N = sp.N;
+        n.lights.resize(desc.lights.size());
+        terms.light = n.lights;
+        terms_out = &terms;
+    }
     Rgb c;
     if (full_) {
         auto visibility = [&](size_t, const Vec3& P, const Vec3& L, float d) {
@@ -95,35 +127,70 @@ Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& 
             return transmittance(scene_, shadow, 0.0f, length(P + L * d - shadow.origin),
                                  counters.tests);
         };
-        c = shade(p, lighting_, visibility);
+        c = shade(p, lighting_, visibility, terms_out);
     } else {
-        c = shade(p, lighting_, AllVisible{});
+        c = shade(p, lighting_, AllVisible{}, terms_out);
     }
-    if (depth >= max_depth_ || (m.reflection <= 0 && m.transparency <= 0)) return c;
+    if (tree) {
+        RayTreeNode& n = tree->nodes[self];
+        n.ambient = terms.ambient;
+        n.flipped = terms.flipped;
+        n.local = c;
+    }
+    if (depth >= max_depth_ || (m.reflection <= 0 && m.transparency <= 0)) return record(c);
 
     // The normal facing the incoming ray (two-sided), and whether the ray enters the object.
     const bool entering = dot(D, sp.Ng) < 0;
     const Vec3 N = dot(D, sp.N) < 0 ? sp.N : -sp.N;
     const float K = desc.attenuation_k;
     // A = 1, or 1/(d+K) for the secondary segment's length d (SPEC §1.1: tree_attenuation).
+    int child = -1;  // the last secondary ray's node (ray-tree recording)
     auto secondary = [&](const Ray& r, uint64_t& count) {
         ++count;
         float d;
-        const Rgb s = trace(r, depth + 1, counters, d);
+        if (tree) child = static_cast<int>(tree->nodes.size());
+        const Rgb s = trace(r, depth + 1, counters, d, tree);
+        if (tree) {
+            tree->nodes[child].returned = s;
+            tree->nodes[child].A = !tree_attenuation_ ? 1.0f
+                                   : std::isinf(d)    ? 0.0f
+                                                      : 1.0f / (d + K);
+        }
         if (!tree_attenuation_) return s;
         return std::isinf(d) ? Rgb{0.0f} : s * (1.0f / (d + K));
     };
+    // Records a child's kind, weight and contribution (ray-tree recording).
+    auto record_child = [&](RayKind kind, float coefficient, const Rgb& contribution) {
+        RayTreeNode& n = tree->nodes[child];
+        n.kind = kind;
+        n.parent = self;
+        n.coefficient = coefficient;
+        n.contribution = contribution;
+        (kind == RayKind::reflection ? tree->nodes[self].reflection_child
+                                     : tree->nodes[self].refraction_child) = child;
+    };
     const Vec3 R = reflect(D, N);
-    if (m.reflection > 0)
-        c += secondary(spawn_ray(sp.P, sp.Ng, R), counters.reflection) * m.reflection;
+    if (m.reflection > 0) {
+        const Rgb contribution =
+            secondary(spawn_ray(sp.P, sp.Ng, R), counters.reflection) * m.reflection;
+        c += contribution;
+        if (tree) record_child(RayKind::reflection, m.reflection, contribution);
+    }
     if (m.transparency > 0) {
         // Entering: n1 = 1, n2 = ior; leaving: n1 = ior, n2 = 1 (the medium around is 1.0).
         const float n1 = entering ? 1.0f : m.ior, n2 = entering ? m.ior : 1.0f;
         Vec3 T;
-        const Vec3 dir = refract(D, N, n1, n2, T) ? T : R;  // total internal reflection: R
-        c += secondary(spawn_ray(sp.P, sp.Ng, dir), counters.refraction) * m.transparency;
+        const bool tir = !refract(D, N, n1, n2, T);
+        const Vec3 dir = tir ? R : T;  // total internal reflection: R
+        const Rgb contribution =
+            secondary(spawn_ray(sp.P, sp.Ng, dir), counters.refraction) * m.transparency;
+        c += contribution;
+        if (tree) {
+            record_child(RayKind::refraction, m.transparency, contribution);
+            tree->nodes[self].total_internal_reflection = tir;
+        }
     }
-    return c;
+    return record(c);
 }
 
 Rgb RayTracer::sample(float px, float py, TraceCounters& counters) const {

@@ -9,6 +9,7 @@
 #include "geometry/scene_query.h"
 #include "image/image.h"
 #include "render/render.h"
+#include "render/ray_tree.h"
 #include "render/stats.h"
 #include "scene/camera.h"
 #include "shading/shade.h"
@@ -51,8 +52,11 @@ class RayTracer {
     RayTracer(const Scene& scene, bool full);
 
     /// The colour seen along `ray` at ray-tree depth `depth` (SPEC §1.1). `distance` receives
-    /// the distance to what the ray hit (infinity on a miss).
-    Rgb trace(const Ray& ray, int depth, TraceCounters& counters, float& distance) const;
+    /// the distance to what the ray hit (infinity on a miss). When `tree` is set, appends this
+    /// ray's node and its children's with the numbers used (render/ray_tree.h); normal renders
+    /// pass nullptr and record nothing.
+    Rgb trace(const Ray& ray, int depth, TraceCounters& counters, float& distance,
+              RayTree* tree = nullptr) const;
 
     /// The colour at pixel-space point (px, py): one primary ray. Every kTimedSampleEvery-th
     /// call (counted in `counters`) is timed (TraceCounters::timed_ns, tests.query_ns).

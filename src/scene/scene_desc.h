@@ -70,6 +70,8 @@ struct ObjectDesc {
     int material = 0;  ///< index into SceneDesc::materials
     std::string path;  ///< key path, e.g. "objects.3", for messages
     Affine transform;  ///< the `transform` key: T·Rz·Ry·Rx·S
+    /// The `transform` keys as given (scale, rotate in degrees, translate), for the scene writer.
+    Vec3 scale{1.0f}, rotate{0.0f}, translate{0.0f};
     // sphere, torus
     Vec3 center{0, 0, 0};
     float radius = 1.0f;  // sphere, cylinder, cone

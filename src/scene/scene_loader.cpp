@@ -492,9 +492,9 @@ class MaterialTable {
 };
 
 /// `transform`: p_world = T·Rz·Ry·Rx·S·p (SPEC §2).
-Affine read_transform(const Json& j, const std::string& path) {
+Affine read_transform(const Json& j, const std::string& path, Vec3& scale, Vec3& rotate,
+                      Vec3& translate) {
     const Section s(j, path, {"scale", "rotate", "translate"});
-    Vec3 scale(1.0f), rotate(0.0f), translate(0.0f);
     if (const Json* v = s.get("scale")) {
         const std::string key = s.key("scale");
         if (v->is_number()) {
@@ -686,7 +686,8 @@ ObjectDesc read_object(const Json& j, const std::string& path, MaterialTable& ma
             break;
     }
     if (const Json* m = s.get("material")) o.material = materials.resolve(*m, s.key("material"));
-    if (const Json* t = s.get("transform")) o.transform = read_transform(*t, s.key("transform"));
+    if (const Json* t = s.get("transform"))
+        o.transform = read_transform(*t, s.key("transform"), o.scale, o.rotate, o.translate);
     if (o.type == ShapeType::mesh) meshes.load(o, s.get("material") != nullptr, materials);
     return o;
 }

@@ -1,0 +1,37 @@
+// Upload of a float image to an OpenGL texture.
+#include "app/viewer/gl_texture.h"
+
+#include <SDL_opengl.h>
+
+#include "image/image_io.h"
+
+namespace luz {
+
+GlTexture::~GlTexture() {
+    if (id_) glDeleteTextures(1, &id_);
+}
+
+void GlTexture::upload(const Image& img, Encoding e) {
+    bytes_.resize(static_cast<size_t>(img.width) * img.height * 4);
+    for (size_t i = 0; i < img.pixels.size(); ++i) {
+        const Rgb& c = img.pixels[i];
+        bytes_[4 * i + 0] = encode_8bit(c.x, e);
+        bytes_[4 * i + 1] = encode_8bit(c.y, e);
+        bytes_[4 * i + 2] = encode_8bit(c.z, e);
+        bytes_[4 * i + 3] = 255;
+    }
+    if (!id_) glGenTextures(1, &id_);
+    glBindTexture(GL_TEXTURE_2D, id_);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, img.width, img.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 bytes_.data());
+    width_ = img.width;
+    height_ = img.height;
+}
+
+}  // namespace luz

@@ -1,0 +1,106 @@
+// Scene writer round trip: load → save → load gives the same description (the same JSON when
+// saved again) and the same image bits; meshes keep their files.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "render/render.h"
+#include "scene/scene_loader.h"
+#include "scene/scene_writer.h"
+
+namespace luz {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TempFolder {
+    fs::path path;
+    TempFolder() {
+        const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+        path = fs::temp_directory_path() /
+               ("luz_round_trip_" + std::to_string(::getpid()) + "_" + info->name());
+        fs::remove_all(path);
+        fs::create_directories(path);
+    }
+    ~TempFolder() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
+Image render_of(const SceneDesc& d) {
+    RenderStats stats;
+    return render(build_scene(d), RenderControl{}, stats);
+}
+
+void expect_round_trip(const std::string& source, const std::vector<Override>& overrides,
+                       const fs::path& dir) {
+    const SceneDesc a = load_scene(source, overrides);
+    const std::string saved = (dir / "saved.json").string();
+    write_scene(saved, a);
+    const SceneDesc b = load_scene(saved);
+    EXPECT_EQ(scene_to_json(a, dir.string()), scene_to_json(b, dir.string())) << source;
+    const Image ia = render_of(a), ib = render_of(b);
+    ASSERT_EQ(ia.pixels.size(), ib.pixels.size());
+    EXPECT_TRUE(ia.pixels == ib.pixels) << source << ": the same image bits";
+}
+
+TEST(SceneRoundTrip, BuiltInScenes) {
+    TempFolder t;
+    const std::vector<Override> small = {{"image.width", "96"}, {"image.height", "72"}};
+    for (const char* s : {"demo:primitives", "demo:whitted", "demo:materials"})
+        expect_round_trip(s, small, t.path);
+}
+
+TEST(SceneRoundTrip, EditedValuesTransformsAndSettings) {
+    TempFolder t;
+    const std::vector<Override> edits = {
+        {"image.width", "80"},
+        {"image.height", "60"},
+        {"materials.blue.n", "3.7"},
+        {"materials.blue.kd", "[0.1, 0.2, 0.3]"},
+        {"ambient", "[0.3, 0.2, 0.1]"},
+        {"attenuation_k", "2.5"},
+        {"lights.0.intensity", "[1.5, 1, 0.5]"},
+        {"render.pipeline", "\"raytrace\""},
+        {"render.tree_attenuation", "true"},
+        {"render.antialias.mode", "\"grid\""},
+        {"render.antialias.samples", "9"},
+        {"objects.1.transform", R"({"scale": [1, 2, 0.5], "rotate": [10, 20, 30],
+                                   "translate": [0.1, 0.2, 0.3]})"},
+        {"objects.2.material", R"({"preset": "vidro", "ior": 1.7})"}};
+    expect_round_trip("demo:primitives", edits, t.path);
+}
+
+TEST(SceneRoundTrip, MeshFilesRelativeToTheSavedScene) {
+    TempFolder t;
+    fs::create_directories(t.path / "in" / "meshes");
+    fs::create_directories(t.path / "out");
+    std::ofstream(t.path / "in" / "meshes" / "tet.obj")
+        << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    std::ofstream(t.path / "in" / "scene.json")
+        << R"({"image": {"width": 40, "height": 30}, "render": {"pipeline": "raytrace"},
+              "objects": [{"type": "mesh", "file": "meshes/tet.obj",
+                           "transform": {"scale": 2, "rotate": [0, 45, 0]}}]})";
+    const SceneDesc a = load_scene((t.path / "in" / "scene.json").string());
+    const fs::path saved = t.path / "out" / "saved.json";
+    write_scene(saved.string(), a);
+    std::ifstream f(saved);
+    const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("\"../in/meshes/tet.obj\""), std::string::npos) << text;
+    const SceneDesc b = load_scene(saved.string());
+    EXPECT_TRUE(render_of(a).pixels == render_of(b).pixels);
+}
+
+TEST(SceneRoundTrip, BuiltInMeshIsWrittenNextToTheScene) {
+    TempFolder t;
+    const SceneDesc a = load_scene("demo:bunny", {{"image.width", "48"}, {"image.height", "36"}});
+    write_scene((t.path / "bunny_scene.json").string(), a);
+    EXPECT_TRUE(fs::exists(t.path / "bunny.obj"));
+    const SceneDesc b = load_scene((t.path / "bunny_scene.json").string());
+    EXPECT_TRUE(render_of(a).pixels == render_of(b).pixels);
+}
+
+}  // namespace
+}  // namespace luz
