@@ -8,6 +8,7 @@
 #include "app/cli_options.h"
 #include "app/list_commands.h"
 #include "app/render_command.h"
+#include "app/signals.h"
 #include "app/view_command.h"
 #include "image/image_io.h"
 #include "scene/input_error.h"
@@ -23,9 +24,14 @@ void print_error_line(const std::string& message) {
     std::string line = message;
     while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
     for (char& c : line) {
-        if (c == '\n' || c == '\r') c = ' ';
+        if (c == '\n' || c == '\r') {
+            c = ' ';
+        } else if (static_cast<unsigned char>(c) < 0x20 && c != '\t') {
+            c = '?';  // a NUL or control byte quoted from a bad file
+        }
     }
-    std::fprintf(stderr, "%s\n", line.c_str());
+    line += '\n';
+    std::fwrite(line.data(), 1, line.size(), stderr);
 }
 
 int run(int argc, char** argv) {
@@ -83,6 +89,9 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
     try {
         return run(argc, argv);
+    } catch (const luz::Interrupted& e) {
+        print_error_line("luz: interrupted");  // nothing written (app/signals.h)
+        return 128 + e.signal;
     } catch (const luz::InputError& e) {
         print_error_line(e.what());  // already names the file and the place
         return 2;

@@ -51,15 +51,62 @@ static std::string bytes_text(uint64_t bytes) {
     return buf;
 }
 
+MemoryEstimate estimate_memory(const SceneDesc& desc) {
+    MemoryEstimate e;
+    const int W = desc.image.width, H = desc.image.height;
+    e.image = estimate_render_bytes(W, H);
+    if (desc.render.antialias.mode == AaMode::adaptive) {
+        // (W+1)×(H+1) corner colours, plus one byte a pixel for the refinement mask
+        e.antialias = uint64_t(W < 0 ? 0 : W + 1) * uint64_t(H < 0 ? 0 : H + 1) * sizeof(Rgb) +
+                      uint64_t(W < 0 ? 0 : W) * uint64_t(H < 0 ? 0 : H);
+    }
+    // Per triangle: tessellated (3 vertices with normals, projected copies, bins) ~ 160 bytes;
+    // a mesh triangle (shared vertices, indices, material, BVH node share and leaf copy) ~ 192.
+    const uint64_t t = uint64_t(desc.render.tessellation < 0 ? 0 : desc.render.tessellation);
+    for (const ObjectDesc& o : desc.objects) {
+        if (o.type == ShapeType::mesh) {
+            if (o.mesh) e.geometry += uint64_t(o.mesh->triangle_count()) * 192;
+        } else if (desc.render.pipeline == Pipeline::zbuffer && o.type != ShapeType::triangle &&
+                   o.type != ShapeType::plane) {
+            e.geometry += 2 * t * t * 160;
+        }
+    }
+    return e;
+}
+
 void check_memory(const SceneDesc& desc, std::optional<uint64_t> limit) {
     const uint64_t max_bytes = limit ? *limit : default_memory_limit();
-    const uint64_t need = estimate_render_bytes(desc.image.width, desc.image.height);
+    const MemoryEstimate e = estimate_memory(desc);
+    const uint64_t need = e.total();
     if (need <= max_bytes) return;
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "image.width: %dx%d needs %s, more than the %s limit",
-                  desc.image.width, desc.image.height, bytes_text(need).c_str(),
-                  bytes_text(max_bytes).c_str());
-    throw InputError(desc.source + ": " + buf);
+    // the key of the largest part, so that the message says what to change
+    std::string key = "image.width";
+    char what[96];
+    std::snprintf(what, sizeof what, "%dx%d", desc.image.width, desc.image.height);
+    std::string subject = what;
+    if (e.geometry > e.image) {
+        // the mesh with most triangles, or the tessellation
+        size_t most = 0;
+        int index = -1;
+        for (size_t i = 0; i < desc.objects.size(); ++i) {
+            const ObjectDesc& o = desc.objects[i];
+            if (o.type == ShapeType::mesh && o.mesh && o.mesh->triangle_count() > most) {
+                most = o.mesh->triangle_count();
+                index = static_cast<int>(i);
+            }
+        }
+        if (index >= 0 && uint64_t(most) * 192 * 2 >= e.geometry) {
+            key = "objects." + std::to_string(index) + ".file";
+            subject =
+                desc.objects[size_t(index)].file + " (" + std::to_string(most) + " triangles)";
+        } else {
+            key = "render.tessellation";
+            subject = "tessellation " + std::to_string(desc.render.tessellation);
+        }
+    }
+    throw InputError(desc.source + ": " + key + ": " + subject + " needs " + bytes_text(need) +
+                     ", more than the " + bytes_text(max_bytes) +
+                     " limit (--max-memory to change it)");
 }
 
 }  // namespace luz

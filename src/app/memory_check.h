@@ -12,11 +12,25 @@ namespace luz {
 /// Bytes a render of W×H pixels needs: float image, depth, g-buffer and the 8-bit copy.
 uint64_t estimate_render_bytes(int width, int height);
 
+/// What a render of a scene needs, by part (estimates made before anything is allocated).
+struct MemoryEstimate {
+    uint64_t image = 0;      ///< estimate_render_bytes(W, H)
+    uint64_t antialias = 0;  ///< adaptive: the (W+1)×(H+1) corner colours and the mask
+    uint64_t geometry = 0;   ///< tessellated shapes (zbuffer), meshes and the BVH
+    uint64_t total() const { return image + antialias + geometry; }
+};
+
+/// The estimate for `desc` (its meshes already loaded): image; antialiasing (grid works in
+/// bounded tiles, adaptive keeps every pixel corner); ~2·t² triangles per curved shape at
+/// tessellation t in the zbuffer; per mesh triangle its share of vertices, indices and BVH.
+MemoryEstimate estimate_memory(const SceneDesc& desc);
+
 /// Half of the physical memory (or of the cgroup limit, when smaller).
 uint64_t default_memory_limit();
 
-/// Throws InputError naming the scene and `image.width` when the image needs more than
-/// `limit` bytes (default_memory_limit() when not given).
+/// Throws InputError naming the scene and the key of the largest part (`image.width`,
+/// `render.tessellation` or `objects.N.file`) when the render needs
+/// more than `limit` bytes (default_memory_limit() when not given).
 void check_memory(const SceneDesc& desc, std::optional<uint64_t> limit = std::nullopt);
 
 }  // namespace luz

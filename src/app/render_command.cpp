@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "app/memory_check.h"
+#include "app/signals.h"
 #include "app/stats_json.h"
 #include "geometry/scene.h"
 #include "image/atomic_file.h"
@@ -19,6 +20,7 @@
 #include "render/render.h"
 #include "render/sampler.h"
 #include "scene/input_error.h"
+#include "scene/obj_loader.h"
 #include "scene/scene_loader.h"
 
 namespace luz {
@@ -58,6 +60,11 @@ int resolved_threads(int requested) {
 }  // namespace
 
 int run_render(const RenderOptions& o) {
+    // 0. Ctrl-C / SIGTERM: until the render starts nothing is written, so a signal ends luz at
+    //    once; from then on it cancels the render and nothing is written (app/signals.h).
+    install_interrupt_handlers();
+    set_interrupt_exits_now(true);
+
     // 1. Everything the command line alone can get wrong, before reading the scene.
     if (!o.output.empty()) check_output_path(o.output, "-o");
     if (!o.stats_file.empty()) check_writable_target(o.stats_file, "--stats");
@@ -65,6 +72,8 @@ int run_render(const RenderOptions& o) {
     const std::vector<Override> overrides = overrides_of(o);
 
     // 2. The scene, with --set and then the options applied; one validation names the key.
+    //    A mesh file may take a quarter of the memory limit (its text, parse and mesh).
+    set_max_text_file_bytes((o.max_memory ? *o.max_memory : default_memory_limit()) / 4);
     SceneDesc desc = load_scene(o.scene, overrides);
     for (const std::string& w : desc.warnings)
         std::fprintf(stderr, "luz: warning: %s\n", w.c_str());
@@ -81,8 +90,11 @@ int run_render(const RenderOptions& o) {
     AaMask mask;
     if (!o.aa_mask_file.empty()) control.aa_mask = &mask;
     if (bar.enabled()) control.progress = [&bar](double f) { bar.update(f); };
+    control.cancel = &interrupt_flag();
     RenderStats stats;
+    set_interrupt_exits_now(false);
     const Image image = render(scene, control, stats);  // on a throw, ~ProgressBar ends the line
+    throw_if_interrupted();                             // the image is incomplete: write nothing
     bar.finish();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -101,7 +113,9 @@ int run_render(const RenderOptions& o) {
     if (!o.aa_mask_file.empty()) {
         mask_file.emplace(o.aa_mask_file, encode_image(o.aa_mask_file, aa_mask_image(mask, image)));
     }
-    write_image(out, image, desc.image.encoding);
+    PendingFile image_file(out, encode_image(out, image, desc.image.encoding));
+    throw_if_interrupted();  // the temporary files go with their destructors
+    image_file.commit();
     if (stats_file) stats_file->commit();
     if (mask_file) mask_file->commit();
 

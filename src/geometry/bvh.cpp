@@ -1,112 +1,264 @@
 // Bvh::build: top-down binned SAH (Wald, "On fast construction of SAH-based bounding volume
-// hierarchies", 2007) over primitive boxes and centroids, nodes laid out depth first.
+// hierarchies", 2007) over primitive boxes and centroids, nodes laid out depth first. Large
+// nodes are binned and partitioned in parallel chunks and their two subtrees built as parallel
+// tasks (oneTBB); every decision depends only on the primitives, never on the thread count, so
+// the tree is the same for any number of threads.
 #include "geometry/bvh.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <memory>
 
 namespace luz {
 
 namespace {
 
-/// A primitive while building: its box, centroid and id, moved together by partitioning.
-struct Ref {
-    Bounds3 box;
-    Vec3 c;
-    uint32_t id;
+// Four floats in one SIMD register (GCC/Clang vector extension): x, y, z and a spare lane.
+typedef float V4 __attribute__((vector_size(16)));
+typedef int32_t I4 __attribute__((vector_size(16)));
+
+V4 vmin(V4 a, V4 b) { return a < b ? a : b; }
+V4 vmax(V4 a, V4 b) { return a > b ? a : b; }
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+/// An axis-aligned box as two V4s (lane 3 unused).
+struct Box {
+    V4 lo{kInf, kInf, kInf, 0}, hi{-kInf, -kInf, -kInf, 0};
+
+    void expand(const Box& b) {
+        lo = vmin(lo, b.lo);
+        hi = vmax(hi, b.hi);
+    }
+    void expand(V4 p) {
+        lo = vmin(lo, p);
+        hi = vmax(hi, p);
+    }
+    bool empty() const { return lo[0] > hi[0] || lo[1] > hi[1] || lo[2] > hi[2]; }
+};
+
+/// A primitive while building: its box (lane 3 zero) and id, 32 bytes, moved by partitioning.
+struct alignas(16) Ref {
+    V4 lo, hi;
+
+    uint32_t id() const {
+        uint32_t i;
+        std::memcpy(&i, &reinterpret_cast<const float*>(&lo)[3], 4);
+        return i;
+    }
+    /// The centroid (lo + hi)/2, as Bounds3::center() computes it (lane 3 zero).
+    V4 centroid() const {
+        const I4 xyz{-1, -1, -1, 0};  // lane 3 holds the id: keep it out of the arithmetic
+        const V4 l = V4(I4(lo) & xyz), h = V4(I4(hi) & xyz);
+        return (l + h) * 0.5f;
+    }
 };
 
 constexpr int kMaxBins = 64;
-constexpr int kMedianDepth = 48;  // deeper nodes split at the median: depth stays < 48 + 32
+constexpr int kMedianDepth = 48;       // deeper nodes split at the median: depth stays < 48 + 32
+constexpr size_t kSerialBelow = 4096;  // smaller subtrees are built by one task
+constexpr size_t kChunk = 16384;       // refs per chunk of parallel binning and partitioning
 
 /// The SAH's measure of a box: its surface area (halved), or for a flat-less box (a segment or
 /// a point) its length, so that costs stay comparable where every area is zero.
 struct Measure {
     bool by_area;
-    float operator()(const Bounds3& b) const {
+    float operator()(const Box& b) const {
         if (b.empty()) return 0.0f;
-        const Vec3 d = b.extent();
-        return by_area ? d.x * d.y + d.y * d.z + d.z * d.x : d.x + d.y + d.z;
+        const V4 d = b.hi - b.lo;
+        return by_area ? d[0] * d[1] + d[1] * d[2] + d[2] * d[0] : d[0] + d[1] + d[2];
     }
 };
 
-/// One bin of one axis: the primitives whose centroids fall in it.
+/// One bin of one axis: the bounds of the boxes whose centroids fall in it, and their number.
 struct Bin {
-    Bounds3 box, cbox;  // of their boxes, of their centroids
+    Box box;
     uint32_t n = 0;
 };
 
+/// The bins of a node on all three axes.
+struct Bins {
+    Bin bin[3][kMaxBins];
+
+    void add(const Bins& o, int bins) {
+        for (int a = 0; a < 3; ++a) {
+            for (int k = 0; k < bins; ++k) {
+                bin[a][k].box.expand(o.bin[a][k].box);
+                bin[a][k].n += o.bin[a][k].n;
+            }
+        }
+    }
+};
+
+/// Bin indices of centroid c on the three axes: clamp(⌊(c − lo)·scale⌋, 0, bins − 1).
+I4 bin_of(V4 c, V4 lo, V4 scale, int bins) {
+    I4 k = __builtin_convertvector((c - lo) * scale, I4);
+    const I4 zero{0, 0, 0, 0}, top{bins - 1, bins - 1, bins - 1, bins - 1};
+    k = k < zero ? zero : k;
+    return k > top ? top : k;
+}
+
+/// A built subtree: a flat array of nodes (root first, second-child offsets relative to it), or
+/// a root whose two subtrees were built as separate tasks.
+struct Subtree {
+    std::vector<BvhNode> nodes;
+    BvhNode root{};
+    std::unique_ptr<Subtree> left, right;
+    size_t size = 0;  // nodes in the subtree
+};
+
+BvhNode make_node(const Box& box) {
+    BvhNode n{};
+    for (int a = 0; a < 3; ++a) {
+        n.lo[a] = box.lo[a];
+        n.hi[a] = box.hi[a];
+    }
+    return n;
+}
+
 class Builder {
   public:
-    Builder(std::vector<Ref>& refs, const BvhOptions& options, std::vector<BvhNode>& nodes)
-        : refs_(refs),
-          options_(options),
-          bins_(std::clamp(options.bins, 2, kMaxBins)),
-          nodes_(nodes) {}
-
-    /// Builds the subtree of refs [begin, end) (their boxes' bounds `box`, their centroids'
-    /// `cbox`) at `depth`; returns its node index.
-    uint32_t build(size_t begin, size_t end, const Bounds3& box, const Bounds3& cbox, int depth) {
-        const uint32_t index = static_cast<uint32_t>(nodes_.size());
-        nodes_.emplace_back();
-        for (int a = 0; a < 3; ++a) {
-            nodes_[index].lo[a] = box.lo[a];
-            nodes_[index].hi[a] = box.hi[a];
-        }
-        Bounds3 child[4];  // box and cbox of the first and the second child
-        const size_t mid = end - begin > 1 ? split(begin, end, depth, box, cbox, child) : begin;
-        if (mid == begin) {
-            nodes_[index].offset = static_cast<uint32_t>(begin);
-            nodes_[index].count = static_cast<uint32_t>(end - begin);
-            return index;
-        }
-        build(begin, mid, child[0], child[1], depth + 1);  // the next node: index + 1
-        const uint32_t second = build(mid, end, child[2], child[3], depth + 1);
-        nodes_[index].offset = second;
-        nodes_[index].count = 0;
-        return index;
-    }
+    Builder(std::vector<Ref>& refs, const BvhOptions& options)
+        : refs_(refs), options_(options), bins_(std::clamp(options.bins, 2, kMaxBins)) {}
 
     /// The bounds of the boxes and of the centroids of refs [begin, end).
-    void bounds_of(size_t begin, size_t end, Bounds3& box, Bounds3& cbox) const {
-        box = cbox = Bounds3{};
+    void bounds_of(size_t begin, size_t end, Box& box, Box& cbox) const {
+        box = cbox = Box{};
         for (size_t i = begin; i < end; ++i) {
-            box.expand(refs_[i].box);
-            cbox.expand(refs_[i].c);
+            box.expand(Box{refs_[i].lo, refs_[i].hi});
+            cbox.expand(refs_[i].centroid());
         }
+        clear_lane3(box);
+    }
+
+    /// Builds the subtree of refs [begin, end) (their boxes' bounds `box`, their centroids'
+    /// `cbox`) at `depth`, in parallel tasks while it is large.
+    std::unique_ptr<Subtree> build_task(size_t begin, size_t end, const Box& box, const Box& cbox,
+                                        int depth) {
+        auto sub = std::make_unique<Subtree>();
+        const auto scratch = std::make_unique<Bins>();
+        if (end - begin < kSerialBelow) {
+            sub->nodes.reserve(2 * (end - begin));
+            build_serial(sub->nodes, begin, end, box, cbox, depth, *scratch);
+            sub->size = sub->nodes.size();
+            return sub;
+        }
+        Box child[4];
+        const size_t mid = split(begin, end, depth, box, cbox, child, *scratch);
+        sub->root = make_node(box);
+        if (mid == begin) {  // a leaf: a flat subtree of one node
+            sub->root.offset = static_cast<uint32_t>(begin);
+            sub->root.count = static_cast<uint32_t>(end - begin);
+            sub->nodes = {sub->root};
+            sub->size = 1;
+            return sub;
+        }
+        tbb::parallel_invoke(
+            [&] { sub->left = build_task(begin, mid, child[0], child[1], depth + 1); },
+            [&] { sub->right = build_task(mid, end, child[2], child[3], depth + 1); });
+        sub->size = 1 + sub->left->size + sub->right->size;
+        return sub;
+    }
+
+    /// Writes subtree s at out[base …] with absolute node indices.
+    static void flatten(const Subtree& s, BvhNode* out, uint32_t base) {
+        if (!s.left) {
+            for (size_t i = 0; i < s.nodes.size(); ++i) {
+                BvhNode n = s.nodes[i];
+                if (!n.leaf()) n.offset += base;
+                out[base + i] = n;
+            }
+            return;
+        }
+        BvhNode root = s.root;
+        const uint32_t second = base + 1 + static_cast<uint32_t>(s.left->size);
+        root.offset = second;
+        root.count = 0;
+        out[base] = root;
+        tbb::parallel_invoke([&] { flatten(*s.left, out, base + 1); },
+                             [&] { flatten(*s.right, out, second); });
     }
 
   private:
-    /// Where to split refs [begin, end) after reordering them, with the children's bounds in
-    /// `child`; `begin` means make a leaf.
-    size_t split(size_t begin, size_t end, int depth, const Bounds3& box, const Bounds3& cbox,
-                 Bounds3* child) {
-        const Vec3 ce = cbox.extent();
-        const int widest = ce.x >= ce.y ? (ce.x >= ce.z ? 0 : 2) : (ce.y >= ce.z ? 1 : 2);
+    static void clear_lane3(Box& b) {
+        b.lo[3] = 0;
+        b.hi[3] = 0;
+    }
+
+    /// Builds the subtree of refs [begin, end) into `nodes` (depth first, offsets relative to
+    /// the first node of `nodes`); returns its root's index.
+    uint32_t build_serial(std::vector<BvhNode>& nodes, size_t begin, size_t end, const Box& box,
+                          const Box& cbox, int depth, Bins& scratch) {
+        const uint32_t index = static_cast<uint32_t>(nodes.size());
+        nodes.push_back(make_node(box));
+        Box child[4];  // box and cbox of the first and the second child
+        const size_t mid =
+            end - begin > 1 ? split(begin, end, depth, box, cbox, child, scratch) : begin;
+        if (mid == begin) {
+            nodes[index].offset = static_cast<uint32_t>(begin);
+            nodes[index].count = static_cast<uint32_t>(end - begin);
+            return index;
+        }
+        build_serial(nodes, begin, mid, child[0], child[1], depth + 1, scratch);  // the next node
+        const uint32_t second =
+            build_serial(nodes, mid, end, child[2], child[3], depth + 1, scratch);
+        nodes[index].offset = second;
+        nodes[index].count = 0;
+        return index;
+    }
+
+    /// Bins refs [begin, end) into `b` (cleared first).
+    void bin_range(size_t begin, size_t end, V4 lo, V4 scale, Bins& b) const {
+        for (int a = 0; a < 3; ++a)
+            for (int k = 0; k < bins_; ++k) b.bin[a][k] = Bin{};
+        for (size_t i = begin; i < end; ++i) {
+            const Ref& r = refs_[i];
+            const I4 k = bin_of(r.centroid(), lo, scale, bins_);
+            for (int a = 0; a < 3; ++a) {
+                Bin& bin = b.bin[a][k[a]];
+                bin.box.lo = vmin(bin.box.lo, r.lo);
+                bin.box.hi = vmax(bin.box.hi, r.hi);
+                ++bin.n;
+            }
+        }
+    }
+
+    /// Where to split refs [begin, end) after reordering them, with the children's box and
+    /// centroid bounds in `child`; `begin` means make a leaf. `bins`: scratch.
+    size_t split(size_t begin, size_t end, int depth, const Box& box, const Box& cbox, Box* child,
+                 Bins& bins) {
+        const V4 ce = cbox.hi - cbox.lo;
+        const int widest = ce[0] >= ce[1] ? (ce[0] >= ce[2] ? 0 : 2) : (ce[1] >= ce[2] ? 1 : 2);
         if (!(ce[widest] > 0)) return begin;  // every centroid in one point: nothing to split
         if (depth >= kMedianDepth) return median(begin, end, widest, child);
 
-        // Bin every primitive on every axis with a centroid extent, in one pass.
-        float scale[3];
-        for (int a = 0; a < 3; ++a) {
-            scale[a] = ce[a] > 0 ? bins_ / ce[a] : 0.0f;
-            for (int k = 0; k < bins_; ++k) bin_[a][k] = Bin{};
-        }
-        for (size_t i = begin; i < end; ++i) {
-            const Ref& r = refs_[i];
-            for (int a = 0; a < 3; ++a) {
-                Bin& b = bin_[a][bin(r.c[a], cbox.lo[a], scale[a])];
-                ++b.n;
-                b.box.expand(r.box);
-                b.cbox.expand(r.c);
-            }
+        // Bin every primitive on every axis with a centroid extent, in one pass (in parallel
+        // chunks for large nodes: bounds and counts merge exactly, in any order).
+        const size_t count = end - begin;
+        V4 scale{0, 0, 0, 0};
+        for (int a = 0; a < 3; ++a) scale[a] = ce[a] > 0 ? bins_ / ce[a] : 0.0f;
+        if (count < 4 * kChunk) {
+            bin_range(begin, end, cbox.lo, scale, bins);
+        } else {
+            const size_t chunks = (count + kChunk - 1) / kChunk;
+            std::vector<std::unique_ptr<Bins>> part(chunks);
+            tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
+                part[c] = std::make_unique<Bins>();
+                bin_range(begin + c * kChunk, std::min(end, begin + (c + 1) * kChunk), cbox.lo,
+                          scale, *part[c]);
+            });
+            for (int a = 0; a < 3; ++a)
+                for (int k = 0; k < bins_; ++k) bins.bin[a][k] = Bin{};
+            for (const auto& p : part) bins.add(*p, bins_);
         }
 
         // The SAH: cost = traversal + (measure(L)·|L| + measure(R)·|R|) / measure(parent).
-        const size_t count = end - begin;
-        const Vec3 e = box.extent();
-        const Measure measure{e.x * e.y + e.y * e.z + e.z * e.x > 0};
+        const V4 e = box.hi - box.lo;
+        const Measure measure{e[0] * e[1] + e[1] * e[2] + e[2] * e[0] > 0};
         const float parent = measure(box);
         float best_cost = std::numeric_limits<float>::infinity();
         int best_axis = -1, best_bin = 0;
@@ -115,19 +267,19 @@ class Builder {
             // right[k]: measure and count of bins k+1 … bins−1
             float right_measure[kMaxBins];
             uint32_t right_count[kMaxBins];
-            Bounds3 acc;
+            Box acc;
             uint32_t c = 0;
             for (int k = bins_ - 1; k > 0; --k) {
-                acc.expand(bin_[a][k].box);
-                c += bin_[a][k].n;
+                acc.expand(bins.bin[a][k].box);
+                c += bins.bin[a][k].n;
                 right_measure[k - 1] = measure(acc);
                 right_count[k - 1] = c;
             }
-            acc = Bounds3{};
+            acc = Box{};
             c = 0;
             for (int k = 0; k < bins_ - 1; ++k) {
-                acc.expand(bin_[a][k].box);
-                c += bin_[a][k].n;
+                acc.expand(bins.bin[a][k].box);
+                c += bins.bin[a][k].n;
                 if (c == 0 || right_count[k] == 0) continue;
                 const float cost = options_.traversal_cost +
                                    (measure(acc) * c + right_measure[k] * right_count[k]) / parent;
@@ -143,30 +295,108 @@ class Builder {
         if (count <= options_.max_leaf_size && !(best_cost < static_cast<float>(count))) {
             return begin;
         }
-        const float lo = cbox.lo[best_axis], s = scale[best_axis];
-        const auto it =
-            std::partition(refs_.begin() + begin, refs_.begin() + end,
-                           [&](const Ref& r) { return bin(r.c[best_axis], lo, s) <= best_bin; });
-        const size_t mid = static_cast<size_t>(it - refs_.begin());
+
+        // The children's boxes from the bins; their centroid bounds while partitioning.
+        for (int i = 0; i < 4; ++i) child[i] = Box{};
+        for (int k = 0; k < bins_; ++k)
+            child[k <= best_bin ? 0 : 2].expand(bins.bin[best_axis][k].box);
+        const size_t mid =
+            count < 4 * kChunk
+                ? partition(begin, end, best_axis, best_bin, cbox.lo, scale, child)
+                : partition_parallel(begin, end, best_axis, best_bin, cbox.lo, scale, child);
         if (mid == begin || mid == end) return median(begin, end, widest, child);
-        for (int i = 0; i < 4; ++i) child[i] = Bounds3{};
-        for (int k = 0; k < bins_; ++k) {
-            const Bin& b = bin_[best_axis][k];
-            child[k <= best_bin ? 0 : 2].expand(b.box);
-            child[k <= best_bin ? 1 : 3].expand(b.cbox);
-        }
+        clear_lane3(child[0]);
+        clear_lane3(child[2]);
         return mid;
     }
 
-    int bin(float c, float lo, float scale) const {
-        const int k = static_cast<int>((c - lo) * scale);
-        return std::clamp(k, 0, bins_ - 1);
+    /// Moves the refs of [begin, end) whose bin on `axis` is ≤ `last` to the front (in place,
+    /// from both ends); their centroid bounds go to child[1], the others' to child[3].
+    size_t partition(size_t begin, size_t end, int axis, int last, V4 lo, V4 scale, Box* child) {
+        size_t i = begin, j = end;
+        Box left, right;
+        for (;;) {
+            for (;;) {  // skip refs that belong on the left
+                if (i == j) goto done;
+                const V4 c = refs_[i].centroid();
+                if (bin_of(c, lo, scale, bins_)[axis] > last) {
+                    right.expand(c);
+                    break;
+                }
+                left.expand(c);
+                ++i;
+            }
+            for (;;) {  // skip refs that belong on the right
+                if (i == --j) goto done;
+                const V4 c = refs_[j].centroid();
+                if (bin_of(c, lo, scale, bins_)[axis] <= last) {
+                    left.expand(c);
+                    break;
+                }
+                right.expand(c);
+            }
+            std::swap(refs_[i], refs_[j]);
+            ++i;
+        }
+    done:
+        child[1] = left;
+        child[3] = right;
+        return i;
     }
 
-    size_t median(size_t begin, size_t end, int axis, Bounds3* child) {
+    /// partition() for large ranges: a stable partition in fixed chunks (count, then scatter
+    /// into a scratch array and copy back), so that the order does not depend on threads.
+    size_t partition_parallel(size_t begin, size_t end, int axis, int last, V4 lo, V4 scale,
+                              Box* child) {
+        const size_t count = end - begin, chunks = (count + kChunk - 1) / kChunk;
+        std::vector<size_t> n_left(chunks);
+        std::vector<Box> c_left(chunks), c_right(chunks);
+        std::unique_ptr<uint8_t[]> side(new uint8_t[count]);
+        tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
+            size_t n = 0;
+            for (size_t i = begin + c * kChunk, e = std::min(end, i + kChunk); i < e; ++i) {
+                const V4 p = refs_[i].centroid();
+                const bool is_left = bin_of(p, lo, scale, bins_)[axis] <= last;
+                side[i - begin] = is_left;
+                (is_left ? c_left[c] : c_right[c]).expand(p);
+                n += is_left;
+            }
+            n_left[c] = n;
+        });
+        std::vector<size_t> at_left(chunks), at_right(chunks);
+        size_t total_left = 0;
+        for (size_t c = 0; c < chunks; ++c) {
+            at_left[c] = total_left;
+            total_left += n_left[c];
+        }
+        size_t r = total_left;
+        for (size_t c = 0; c < chunks; ++c) {
+            at_right[c] = r;
+            r += std::min(kChunk, count - c * kChunk) - n_left[c];
+        }
+        std::unique_ptr<Ref[]> scratch(new Ref[count]);
+        tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
+            size_t l = at_left[c], rr = at_right[c];
+            for (size_t i = begin + c * kChunk, e = std::min(end, i + kChunk); i < e; ++i)
+                scratch[side[i - begin] ? l++ : rr++] = refs_[i];
+        });
+        tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
+            const size_t i = c * kChunk, e = std::min(count, i + kChunk);
+            std::copy(scratch.get() + i, scratch.get() + e, refs_.begin() + begin + i);
+        });
+        child[1] = child[3] = Box{};
+        for (size_t c = 0; c < chunks; ++c) {
+            child[1].expand(c_left[c]);
+            child[3].expand(c_right[c]);
+        }
+        return begin + total_left;
+    }
+
+    size_t median(size_t begin, size_t end, int axis, Box* child) {
         const size_t mid = begin + (end - begin) / 2;
-        std::nth_element(refs_.begin() + begin, refs_.begin() + mid, refs_.begin() + end,
-                         [axis](const Ref& a, const Ref& b) { return a.c[axis] < b.c[axis]; });
+        std::nth_element(
+            refs_.begin() + begin, refs_.begin() + mid, refs_.begin() + end,
+            [axis](const Ref& a, const Ref& b) { return a.centroid()[axis] < b.centroid()[axis]; });
         bounds_of(begin, mid, child[0], child[1]);
         bounds_of(mid, end, child[2], child[3]);
         return mid;
@@ -175,8 +405,6 @@ class Builder {
     std::vector<Ref>& refs_;
     const BvhOptions& options_;
     int bins_;
-    std::vector<BvhNode>& nodes_;
-    Bin bin_[3][kMaxBins];  // scratch, reused by every node
 };
 
 }  // namespace
@@ -188,17 +416,23 @@ Bvh Bvh::build(std::span<const Bounds3> bounds, const BvhOptions& options) {
     for (size_t i = 0; i < bounds.size(); ++i) {
         const Bounds3& b = bounds[i];
         if (b.empty()) continue;
-        refs.push_back({b, b.center(), static_cast<uint32_t>(i)});
+        Ref r;
+        const uint32_t id = static_cast<uint32_t>(i);
+        float id_bits;
+        std::memcpy(&id_bits, &id, 4);
+        r.lo = V4{b.lo.x, b.lo.y, b.lo.z, id_bits};
+        r.hi = V4{b.hi.x, b.hi.y, b.hi.z, 0.0f};
+        refs.push_back(r);
     }
     if (refs.empty()) return bvh;
-    bvh.nodes_.reserve(2 * refs.size());
-    auto builder = std::make_unique<Builder>(refs, options, bvh.nodes_);
-    Bounds3 box, cbox;
-    builder->bounds_of(0, refs.size(), box, cbox);
-    builder->build(0, refs.size(), box, cbox, 0);
-    bvh.nodes_.shrink_to_fit();
+    Builder builder(refs, options);
+    Box box, cbox;
+    builder.bounds_of(0, refs.size(), box, cbox);
+    const std::unique_ptr<Subtree> tree = builder.build_task(0, refs.size(), box, cbox, 0);
+    bvh.nodes_.resize(tree->size);
+    Builder::flatten(*tree, bvh.nodes_.data(), 0);
     bvh.order_.resize(refs.size());
-    for (size_t i = 0; i < refs.size(); ++i) bvh.order_[i] = refs[i].id;
+    tbb::parallel_for(size_t{0}, refs.size(), [&](size_t i) { bvh.order_[i] = refs[i].id(); });
     return bvh;
 }
 

@@ -29,8 +29,8 @@
 namespace luz {
 
 /// 32 bytes: the box, and either a leaf's primitive range or an interior node's second child
-/// (the first child is the next node).
-struct BvhNode {
+/// (the first child is the next node). Aligned so that no node straddles two cache lines.
+struct alignas(32) BvhNode {
     float lo[3];
     uint32_t offset;  ///< leaf: first slot in Bvh::order(); interior: index of the second child
     float hi[3];
@@ -81,6 +81,7 @@ class Bvh {
     static constexpr int kMaxDepth = 96;  ///< traversal stack size (build depth stays below)
 
   private:
+    friend class Bvh4;  // takes the order when collapsing (bvh4.h)
     std::vector<BvhNode> nodes_;
     std::vector<uint32_t> order_;
 };
@@ -124,90 +125,60 @@ inline bool hit_node(const BvhNode& n, const BoxRay& r, float t_min, float t_max
 /// t_max with the margin within which nodes are still visited (ties between primitives).
 inline float with_margin(float t_max) { return t_max + t_max * 0x1p-16f; }
 
-/// Both children of an interior node tested at once: hit_node() on SIMD lanes, with the same
-/// result bit for bit. Per axis the near plane is lo or hi by the sign of 1/direction, so that
-/// t_near ≤ t_far without a swap; a NaN (0·∞) loses against t_min or t_max in max/min, which
-/// leaves the interval as it is, as in hit_node(). Lane 3 of each box (offset, count) is
-/// multiplied by NaN, so it never counts.
-struct PairRay {
-#if defined(__AVX__)
-    __m256 o, inv, sign;  // both halves alike: x, y, z, 0 | x, y, z, 0
-#elif defined(__SSE2__)
+/// A ray prepared for SIMD box tests (SSE2: x, y, z in lanes 0–2). hit_box() gives the very
+/// result of hit_node(): per axis the near plane is lo or hi by the sign of 1/direction, so
+/// that t_near ≤ t_far without a swap; a NaN (0·∞) loses against t_min or t_max in max/min,
+/// which leaves the interval as it is. Lane 3 of a node (offset, count) is replaced by −∞ and
+/// +∞, so it never counts.
+struct SimdRay {
+#if defined(__SSE2__)
     __m128 o, inv, sign;
 #else
     BoxRay box;
 #endif
-    explicit PairRay(const Ray& r)
+    explicit SimdRay(const Ray& r)
 #if !defined(__SSE2__)
         : box(r)
 #endif
     {
 #if defined(__SSE2__)
-        const float nan = std::numeric_limits<float>::quiet_NaN();
-        const float ix = 1.0f / r.direction.x, iy = 1.0f / r.direction.y,
-                    iz = 1.0f / r.direction.z;
-        const __m128 o4 = _mm_setr_ps(r.origin.x, r.origin.y, r.origin.z, 0.0f);
-        const __m128 inv4 = _mm_setr_ps(ix, iy, iz, nan);
+        o = _mm_setr_ps(r.origin.x, r.origin.y, r.origin.z, 0.0f);
+        inv = _mm_setr_ps(1.0f / r.direction.x, 1.0f / r.direction.y, 1.0f / r.direction.z, 1.0f);
         // all ones where 1/direction is negative (sign bit set, −∞ for a −0 component)
-        const __m128 sign4 = _mm_castsi128_ps(_mm_srai_epi32(_mm_castps_si128(inv4), 31));
-#if defined(__AVX__)
-        o = _mm256_set_m128(o4, o4);
-        inv = _mm256_set_m128(inv4, inv4);
-        sign = _mm256_set_m128(sign4, sign4);
-#else
-        o = o4;
-        inv = inv4;
-        sign = sign4;
-#endif
+        sign = _mm_castsi128_ps(_mm_srai_epi32(_mm_castps_si128(inv), 31));
 #endif
     }
 };
 
-/// Tests boxes a and b against r over [t_min, t_max]: bit 0 set if a is hit, bit 1 if b is;
-/// their entry distances in ea, eb (meaningful only when hit).
-inline int hit_pair(const BvhNode& a, const BvhNode& b, const PairRay& r, float t_min,
-                    float t_max, float& ea, float& eb) {
-#if defined(__AVX__)
-    const __m256 na = _mm256_loadu_ps(a.lo), nb = _mm256_loadu_ps(b.lo);
-    const __m256 lo = _mm256_permute2f128_ps(na, nb, 0x20);  // a.lo | b.lo
-    const __m256 hi = _mm256_permute2f128_ps(na, nb, 0x31);  // a.hi | b.hi
-    const __m256 near_plane = _mm256_blendv_ps(lo, hi, r.sign);
-    const __m256 far_plane = _mm256_blendv_ps(hi, lo, r.sign);
-    __m256 tn = _mm256_mul_ps(_mm256_sub_ps(near_plane, r.o), r.inv);
-    __m256 tf = _mm256_mul_ps(_mm256_mul_ps(_mm256_sub_ps(far_plane, r.o), r.inv),
-                              _mm256_set1_ps(kExitScale));
-    tn = _mm256_max_ps(tn, _mm256_set1_ps(t_min));  // NaN → t_min
-    tf = _mm256_min_ps(tf, _mm256_set1_ps(t_max));  // NaN → t_max
-    tn = _mm256_max_ps(tn, _mm256_permute_ps(tn, _MM_SHUFFLE(2, 3, 0, 1)));
-    tf = _mm256_min_ps(tf, _mm256_permute_ps(tf, _MM_SHUFFLE(2, 3, 0, 1)));
-    tn = _mm256_max_ps(tn, _mm256_permute_ps(tn, _MM_SHUFFLE(1, 0, 3, 2)));
-    tf = _mm256_min_ps(tf, _mm256_permute_ps(tf, _MM_SHUFFLE(1, 0, 3, 2)));
-    const int m = _mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OQ));
-    ea = _mm256_cvtss_f32(tn);
-    eb = _mm_cvtss_f32(_mm256_extractf128_ps(tn, 1));
-    return (m & 1) | ((m >> 3) & 2);
-#elif defined(__SSE2__)
-    const auto one = [&](const BvhNode& n, float& entry) {
-        const __m128 lo = _mm_loadu_ps(n.lo), hi = _mm_loadu_ps(n.hi);
-        const __m128 near_plane = _mm_or_ps(_mm_and_ps(r.sign, hi), _mm_andnot_ps(r.sign, lo));
-        const __m128 far_plane = _mm_or_ps(_mm_and_ps(r.sign, lo), _mm_andnot_ps(r.sign, hi));
-        __m128 tn = _mm_mul_ps(_mm_sub_ps(near_plane, r.o), r.inv);
-        __m128 tf = _mm_mul_ps(_mm_mul_ps(_mm_sub_ps(far_plane, r.o), r.inv),
-                               _mm_set1_ps(kExitScale));
-        tn = _mm_max_ps(tn, _mm_set1_ps(t_min));
-        tf = _mm_min_ps(tf, _mm_set1_ps(t_max));
-        tn = _mm_max_ps(tn, _mm_shuffle_ps(tn, tn, _MM_SHUFFLE(2, 3, 0, 1)));
-        tf = _mm_min_ps(tf, _mm_shuffle_ps(tf, tf, _MM_SHUFFLE(2, 3, 0, 1)));
-        tn = _mm_max_ps(tn, _mm_shuffle_ps(tn, tn, _MM_SHUFFLE(1, 0, 3, 2)));
-        tf = _mm_min_ps(tf, _mm_shuffle_ps(tf, tf, _MM_SHUFFLE(1, 0, 3, 2)));
-        entry = _mm_cvtss_f32(tn);
-        return _mm_comile_ss(tn, tf);
-    };
-    return (one(a, ea) ? 1 : 0) | (one(b, eb) ? 2 : 0);
+/// hit_node() on SIMD lanes (see SimdRay).
+inline bool hit_box(const BvhNode& n, const SimdRay& r, float t_min, float t_max, float& entry) {
+#if defined(__SSE2__)
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    const __m128 xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
+    const __m128 lo = _mm_or_ps(_mm_and_ps(_mm_loadu_ps(n.lo), xyz), _mm_setr_ps(0, 0, 0, -inf));
+    const __m128 hi = _mm_or_ps(_mm_and_ps(_mm_loadu_ps(n.hi), xyz), _mm_setr_ps(0, 0, 0, inf));
+    const __m128 near_plane = _mm_or_ps(_mm_and_ps(r.sign, hi), _mm_andnot_ps(r.sign, lo));
+    const __m128 far_plane = _mm_or_ps(_mm_and_ps(r.sign, lo), _mm_andnot_ps(r.sign, hi));
+    __m128 tn = _mm_mul_ps(_mm_sub_ps(near_plane, r.o), r.inv);
+    __m128 tf = _mm_mul_ps(_mm_mul_ps(_mm_sub_ps(far_plane, r.o), r.inv), _mm_set1_ps(kExitScale));
+    tn = _mm_max_ps(tn, _mm_set1_ps(t_min));  // NaN → t_min
+    tf = _mm_min_ps(tf, _mm_set1_ps(t_max));  // NaN → t_max
+    tn = _mm_max_ps(tn, _mm_shuffle_ps(tn, tn, _MM_SHUFFLE(2, 3, 0, 1)));
+    tf = _mm_min_ps(tf, _mm_shuffle_ps(tf, tf, _MM_SHUFFLE(2, 3, 0, 1)));
+    tn = _mm_max_ps(tn, _mm_shuffle_ps(tn, tn, _MM_SHUFFLE(1, 0, 3, 2)));
+    tf = _mm_min_ps(tf, _mm_shuffle_ps(tf, tf, _MM_SHUFFLE(1, 0, 3, 2)));
+    entry = _mm_cvtss_f32(tn);
+    return _mm_comile_ss(tn, tf);
 #else
-    return (hit_node(a, r.box, t_min, t_max, ea) ? 1 : 0) |
-           (hit_node(b, r.box, t_min, t_max, eb) ? 2 : 0);
+    return hit_node(n, r.box, t_min, t_max, entry);
 #endif
+}
+
+/// Both children of an interior node: bit 0 set if a is hit, bit 1 if b is; their entry
+/// distances in ea, eb (meaningful only when hit).
+inline int hit_pair(const BvhNode& a, const BvhNode& b, const SimdRay& r, float t_min, float t_max,
+                    float& ea, float& eb) {
+    return (hit_box(a, r, t_min, t_max, ea) ? 1 : 0) | (hit_box(b, r, t_min, t_max, eb) ? 2 : 0);
 }
 
 }  // namespace bvh_detail
@@ -223,12 +194,12 @@ void Bvh::nearest(const Ray& r, float t_min, float& t_max, uint64_t& box_tests, 
     };
     Entry stack[kMaxDepth];
     int top = 0;
+    const SimdRay sr(r);
     {
         float entry;
         ++box_tests;
-        if (!hit_node(nodes[0], BoxRay(r), t_min, with_margin(t_max), entry)) return;
+        if (!hit_box(nodes[0], sr, t_min, with_margin(t_max), entry)) return;
     }
-    const PairRay pr(r);
     uint32_t node = 0;
     for (;;) {
         const BvhNode& n = nodes[node];
@@ -238,7 +209,7 @@ void Bvh::nearest(const Ray& r, float t_min, float& t_max, uint64_t& box_tests, 
             const uint32_t a = node + 1, b = n.offset;
             float ea, eb;
             box_tests += 2;
-            const int hit = hit_pair(nodes[a], nodes[b], pr, t_min, with_margin(t_max), ea, eb);
+            const int hit = hit_pair(nodes[a], nodes[b], sr, t_min, with_margin(t_max), ea, eb);
             if (hit == 3) {
                 // near child now, the far one later
                 const bool b_first = eb < ea;
@@ -272,9 +243,9 @@ bool Bvh::any(const Ray& r, float t_min, float t_max, uint64_t& box_tests, Visit
     int top = 0;
     float ea, eb;
     const float limit = with_margin(t_max);
+    const SimdRay sr(r);
     ++box_tests;
-    if (!hit_node(nodes[0], BoxRay(r), t_min, limit, ea)) return false;
-    const PairRay pr(r);
+    if (!hit_box(nodes[0], sr, t_min, limit, ea)) return false;
     uint32_t node = 0;
     for (;;) {
         const BvhNode& n = nodes[node];
@@ -284,7 +255,7 @@ bool Bvh::any(const Ray& r, float t_min, float t_max, uint64_t& box_tests, Visit
         } else {
             const uint32_t a = node + 1, b = n.offset;
             box_tests += 2;
-            const int hit = hit_pair(nodes[a], nodes[b], pr, t_min, limit, ea, eb);
+            const int hit = hit_pair(nodes[a], nodes[b], sr, t_min, limit, ea, eb);
             if (hit == 3) {
                 stack[top++] = b;
                 node = a;

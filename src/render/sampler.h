@@ -122,14 +122,15 @@ struct AdaptiveSpec {
 
 /// Largest per-channel difference among four colours, on values clamped to [0, 1].
 inline float corner_difference(const Rgb& a, const Rgb& b, const Rgb& c, const Rgb& d) {
-    const Rgb ca = clamp01(a), cb = clamp01(b), cc = clamp01(c), cd = clamp01(d);
-    float diff = 0;
-    for (int ch = 0; ch < 3; ++ch) {
-        const float lo = std::min({ca[ch], cb[ch], cc[ch], cd[ch]});
-        const float hi = std::max({ca[ch], cb[ch], cc[ch], cd[ch]});
-        diff = std::max(diff, hi - lo);
-    }
-    return diff;
+    // Plain comparisons (minss/maxss), not fminf/fmaxf calls: this runs for every pixel.
+    const auto lo = [](float p, float q) { return q < p ? q : p; };
+    const auto hi = [](float p, float q) { return p < q ? q : p; };
+    const auto range = [&](float p, float q, float r, float s) {
+        const float top = std::min(hi(hi(p, q), hi(r, s)), 1.0f);
+        const float bottom = std::max(lo(lo(p, q), lo(r, s)), 0.0f);
+        return top > bottom ? top - bottom : 0.0f;
+    };
+    return hi(hi(range(a.x, b.x, c.x, d.x), range(a.y, b.y, c.y, d.y)), range(a.z, b.z, c.z, d.z));
 }
 
 /// The sub-corners a tile's refined pixels have sampled, so that each is sampled once: those

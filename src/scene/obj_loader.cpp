@@ -4,6 +4,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include <atomic>
 #include <cerrno>
 #include <charconv>
 #include <climits>
@@ -302,6 +303,14 @@ std::vector<Material> scan_mtl(std::string_view text, const std::string& file,
             // as LoadMtl: the rest of the line, trailing blanks removed
             std::string_view rest = tokens.rest();
             while (!rest.empty() && is_blank(rest.back())) rest.remove_suffix(1);
+            // tinyobjloader skips an unnamed `newmtl` and cuts a name at a NUL: refuse both,
+            // so that both readers list the same materials (found by fuzzing)
+            if (rest.empty()) fail_at(file, n, "newmtl: expected a material name");
+            for (const char c : rest) {
+                if (static_cast<unsigned char>(c) < 0x20 && c != '\t') {
+                    fail_at(file, n, "newmtl: control character in the material name");
+                }
+            }
             name = std::string(rest);
         } else if (key == "Ka" || key == "Kd" || key == "Ks") {
             const std::string k(key);
@@ -386,7 +395,11 @@ class MtlReader : public tinyobj::MaterialReader {
         std::istream in(&buffer);
         tinyobj::LoadMtl(names, materials, &in, warn, err);
         if (materials->size() - before != mapped.size()) {
-            throw std::logic_error(path + ": MTL material count differs from tinyobjloader's");
+            // a quirk of tinyobjloader's MTL syntax not mirrored in scan_mtl: bad input all the
+            // same
+            throw InputError(path + ": malformed MTL file: tinyobjloader reads " +
+                             std::to_string(materials->size() - before) + " materials, not " +
+                             std::to_string(mapped.size()));
         }
         materials_.insert(materials_.end(), mapped.begin(), mapped.end());
         return true;
@@ -407,10 +420,29 @@ class MtlReader : public tinyobj::MaterialReader {
 
 }  // namespace
 
+namespace {
+std::atomic<uint64_t> g_max_text_file_bytes{UINT64_MAX};
+}  // namespace
+
+void set_max_text_file_bytes(uint64_t bytes) { g_max_text_file_bytes.store(bytes); }
+
 std::optional<std::string> read_text_file(const std::string& path, std::string& reason) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) {
         reason = "is a directory";
+        return std::nullopt;
+    }
+    // before reading: not endless (/dev/zero, a pipe), not larger than the memory allows
+    const auto status = std::filesystem::status(path, ec);
+    if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+        reason = "not a regular file";
+        return std::nullopt;
+    }
+    const uint64_t size = std::filesystem::file_size(path, ec);
+    if (!ec && size > g_max_text_file_bytes.load()) {
+        reason = "the file's " + std::to_string(size) + " bytes are more than the " +
+                 std::to_string(g_max_text_file_bytes.load()) +
+                 " a mesh file may have (a quarter of --max-memory)";
         return std::nullopt;
     }
     std::FILE* f = std::fopen(path.c_str(), "rb");

@@ -2,6 +2,7 @@
 // light pass of our own that checks every number and index and names FILE:LINE on bad input.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -18,8 +19,13 @@ namespace luz {
 using TextReader =
     std::function<std::optional<std::string>(const std::string& path, std::string& reason)>;
 
-/// Reads a file from disk (the default TextReader).
+/// Reads a file from disk (the default TextReader). Refuses what is not a regular file (a
+/// folder, /dev/zero, a pipe) and a file larger than set_max_text_file_bytes(), before reading.
 std::optional<std::string> read_text_file(const std::string& path, std::string& reason);
+
+/// The largest OBJ or MTL file read_text_file() reads (default: no limit); `luz render` sets a
+/// share of --max-memory, so that a mesh too large is refused rather than half-loaded.
+void set_max_text_file_bytes(uint64_t bytes);
 
 /// Parses the OBJ text of `file` (`file` labels messages and locates MTL files: `mtllib` names
 /// are relative to its folder; `read` reads them). Polygons are triangulated; `v`, `vn`, `f`,

@@ -815,8 +815,44 @@ std::pair<int, int> line_column(std::string_view text, std::size_t offset) {
     return {line, column};
 }
 
+/// Deepest nesting of arrays and objects accepted (a scene needs 5). Deeper text is refused
+/// before parsing: nlohmann's dump() recurses, and "got …" messages dump values.
+constexpr int kMaxJsonNesting = 64;
+
+/// Byte offset of the first '[' or '{' nested deeper than kMaxJsonNesting outside strings, or
+/// npos.
+std::size_t too_deep_at(std::string_view text) {
+    int depth = 0;
+    bool in_string = false, escaped = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (in_string) {
+            if (escaped) {
+                escaped = false;
+            } else if (c == '\\') {
+                escaped = true;
+            } else if (c == '"') {
+                in_string = false;
+            }
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonNesting) return i;
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+    return std::string_view::npos;
+}
+
 /// Parses JSON text; on failure throws InputError "FILE:LINE:COL: JSON syntax error: …".
 Json parse_text(std::string_view text, const std::string& file) {
+    if (const std::size_t at = too_deep_at(text); at != std::string_view::npos) {
+        const auto [line, column] = line_column(text, at);
+        throw InputError(file + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                         ": JSON nested deeper than " + std::to_string(kMaxJsonNesting) +
+                         " levels");
+    }
     try {
         return Json::parse(text);
     } catch (const Json::exception&) {
@@ -863,6 +899,10 @@ bool is_bare_word(std::string_view s) {
 /// render.pipeline=raytrace`) is taken as that string: what a user typing a shell command
 /// expects, since the shell has already eaten any quotes.
 Json override_value(const Override& o) {
+    if (too_deep_at(o.json) != std::string_view::npos) {
+        throw InputError(override_label(o) + ": JSON nested deeper than " +
+                         std::to_string(kMaxJsonNesting) + " levels");
+    }
     try {
         return Json::parse(o.json);
     } catch (const Json::exception& e) {

@@ -204,6 +204,17 @@ TEST(AdaptiveSampler, FlatRegionsCostOneSamplePerPixelCorner) {
     for (uint8_t level : mask.level) EXPECT_EQ(level, 0);
 }
 
+// SPEC §1.2: "largest per-channel difference, on values clamped to [0,1]".
+TEST(AdaptiveSampler, CornerDifferenceIsTheLargestChannelRangeOfClampedValues) {
+    EXPECT_EQ(corner_difference(Rgb{0.2f}, Rgb{0.2f}, Rgb{0.2f}, Rgb{0.2f}), 0.0f);
+    EXPECT_FLOAT_EQ(corner_difference({0.1f, 0.5f, 0.0f}, {0.3f, 0.5f, 0.0f}, {0.2f, 0.9f, 0.0f},
+                                      {0.2f, 0.6f, 0.0f}),
+                    0.4f);
+    EXPECT_EQ(corner_difference(Rgb{2.0f}, Rgb{1.0f}, Rgb{5.0f}, Rgb{1.5f}), 0.0f);  // all white
+    EXPECT_FLOAT_EQ(corner_difference(Rgb{-1.0f}, Rgb{0.5f}, Rgb{0.0f}, Rgb{-3.0f}), 0.5f);
+    EXPECT_FLOAT_EQ(corner_difference(Rgb{-1.0f}, Rgb{9.0f}, Rgb{0.5f}, Rgb{0.5f}), 1.0f);
+}
+
 // A pixel with corners A, A (left) and B, B (right) of an edge at x = 0.3: max_level 0 keeps
 // the mean of the corners; max_level 1 splits once into 4 sub-pixels.
 TEST(AdaptiveSampler, SplitsUpToMaxLevelAndAveragesTheParts) {

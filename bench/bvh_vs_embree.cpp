@@ -1,0 +1,787 @@
+// Benchmark: luz's BVH (geometry/bvh.h + the watertight triangle test) against Intel Embree 3
+// (rtcIntersect1, one ray at a time) on the same triangles: primary rays (perspective and
+// orthographic, 1024²) and incoherent secondary rays, 1 and 2 threads, hits compared ray by ray;
+// build times and bytes per triangle. Results go to docs/BENCHMARKS.md.
+#include <embree3/rtcore.h>
+#include <tbb/task_arena.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "geometry/bvh.h"
+#include "geometry/bvh4.h"
+#include "geometry/intersect.h"
+#include "geometry/mesh.h"
+#include "geometry/scene.h"
+#include "geometry/scene_query.h"
+#include "scene/obj_loader.h"
+
+namespace {
+
+using namespace luz;
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr uint32_t kNoHit = 0xFFFFFFFFu;
+
+struct Options {
+    std::vector<std::string> meshes;
+    int size = 1024;                 ///< primary rays: size × size
+    int reps = 5;                    ///< timed passes per engine and configuration (median)
+    std::vector<int> threads{1, 2};  ///< thread counts for tracing and building
+    double idle_wait = 60;           ///< longest wait for an idle machine (0: never wait)
+    bool robust = false;             ///< Embree: RTC_SCENE_FLAG_ROBUST
+    bool scene = false;              ///< also time luz's scene query (nearest_hit)
+    bool cpu_time = false;  ///< time by process CPU time (while developing on a busy machine)
+    int build_reps = 0;     ///< 0: 21 (small meshes) or 5
+    BvhOptions bvh;         ///< luz's build settings (default: BvhOptions{})
+};
+
+bool g_cpu_time = false;
+
+// ---------------------------------------------------------------------------------------------
+// Time and load
+
+double now_seconds() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
+
+double cpu_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+/// CPU seconds spent by the whole machine (all processes, /proc/stat), or −1 if unknown.
+double machine_busy_seconds() {
+    std::ifstream in("/proc/stat");
+    std::string cpu;
+    unsigned long long user, nice, system, idle, iowait, irq, softirq, steal;
+    if (!(in >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal))
+        return -1;
+    const double hz = static_cast<double>(sysconf(_SC_CLK_TCK));
+    return static_cast<double>(user + nice + system + irq + softirq + steal) / hz;
+}
+
+/// Waits until other processes leave the CPUs nearly idle (< 0.1 core over half a second), for
+/// at most `max_seconds`.
+void wait_for_idle(double max_seconds) {
+    const double start = now_seconds();
+    bool said = false;
+    while (now_seconds() - start < max_seconds) {
+        const double m0 = machine_busy_seconds(), c0 = cpu_seconds(), t0 = now_seconds();
+        usleep(500000);
+        const double busy =
+            (machine_busy_seconds() - m0 - (cpu_seconds() - c0)) / (now_seconds() - t0);
+        if (m0 < 0 || busy < 0.1) return;
+        if (!said) std::fprintf(stderr, "  waiting for an idle machine (%.2f cores busy)\n", busy);
+        said = true;
+    }
+    std::fprintf(stderr, "  machine still busy: measuring anyway\n");
+}
+
+/// Runs f() once; its wall seconds, and in `others` the cores other processes used meanwhile.
+double timed(const std::function<void()>& f, double& others) {
+    const double m0 = machine_busy_seconds(), c0 = cpu_seconds(), t0 = now_seconds();
+    f();
+    const double wall = now_seconds() - t0;
+    const double own = cpu_seconds() - c0;
+    others = m0 < 0 ? 0 : std::max(0.0, (machine_busy_seconds() - m0 - own) / wall);
+    return g_cpu_time ? own : wall;
+}
+
+double median(std::vector<double> x) {
+    if (x.empty()) return 0;
+    std::sort(x.begin(), x.end());
+    const size_t n = x.size();
+    return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
+}
+
+/// Runs each of `configs` `reps` times, interleaved (a, b, c, b, c, a, …: the order rotated
+/// every round) so that a drifting machine slows all alike; a run during which other processes
+/// used more than 0.15 core is dropped and repeated once the machine is idle. One untimed
+/// warm-up run each. Returns the median seconds of each.
+std::vector<double> interleaved(const std::vector<std::function<void()>>& configs, int reps,
+                                double idle_wait) {
+    const size_t n = configs.size();
+    std::vector<std::vector<double>> seconds(n);
+    for (const auto& f : configs) f();
+    int dropped = 0;
+    for (int round = 0; round < reps; ++round) {
+        for (size_t i = 0; i < n; ++i) {
+            const size_t c = (i + static_cast<size_t>(round)) % n;
+            double others = 0;
+            const double s = timed(configs[c], others);
+            if (idle_wait > 0 && others > 0.15 && dropped < 40) {
+                ++dropped;
+                std::fprintf(stderr, "  other processes took %.2f cores: run dropped\n", others);
+                wait_for_idle(idle_wait);
+                --i;
+                continue;
+            }
+            seconds[c].push_back(s);
+            if (std::getenv("LUZ_BENCH_VERBOSE")) std::fprintf(stderr, "  run %zu: %.4f s\n", c, s);
+        }
+    }
+    std::vector<double> m;
+    for (const auto& s : seconds) m.push_back(median(s));
+    return m;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rays
+
+/// A 32-bit integer hash (Wellons' lowbias32): the deterministic RNG of the secondary rays.
+uint32_t hash32(uint32_t x) {
+    x ^= x >> 16;
+    x *= 0x7feb352dU;
+    x ^= x >> 15;
+    x *= 0x846ca68bU;
+    x ^= x >> 16;
+    return x;
+}
+float unit_float(uint32_t h) { return static_cast<float>(h >> 8) * 0x1p-24f; }
+
+/// The camera framing a mesh: looking at the centre of its bounds from direction `to_eye`,
+/// y up, the sphere around the centre through the farthest vertex just fitting the image.
+struct Framing {
+    Vec3 center, forward, right, up;
+    float radius;
+};
+
+Framing frame_mesh(const Mesh& m) {
+    Framing f;
+    f.center = m.bounds.center();
+    f.radius = 0;
+    for (const Vec3& p : m.positions) f.radius = std::max(f.radius, length(p - f.center));
+    f.forward = -normalize(Vec3{0.35f, 0.3f, 1.0f});
+    f.right = normalize(cross(f.forward, Vec3{0, 1, 0}));
+    f.up = cross(f.right, f.forward);
+    return f;
+}
+
+/// Pixel (x, y) of the k-th ray when an n×n image is walked in 8×8 tiles (as renderers do).
+void tile_pixel(int k, int n, int& x, int& y) {
+    const int tiles_x = (n + 7) / 8;
+    const int tile = k / 64, in = k % 64;
+    x = (tile % tiles_x) * 8 + in % 8;
+    y = (tile / tiles_x) * 8 + in / 8;
+}
+
+/// n×n perspective rays (vertical field of view 40°), unit directions, in 8×8 tiles.
+std::vector<Ray> perspective_rays(const Framing& f, int n) {
+    const float half = std::tan(20.0f * 3.14159265f / 180.0f);
+    const Vec3 eye = f.center - f.forward * (f.radius / std::sin(20.0f * 3.14159265f / 180.0f));
+    std::vector<Ray> rays;
+    rays.reserve(static_cast<size_t>(n) * n);
+    for (int k = 0; k < n * n; ++k) {
+        int x, y;
+        tile_pixel(k, n, x, y);
+        if (x >= n || y >= n) continue;
+        const float u = (2.0f * (x + 0.5f) / n - 1.0f) * half;
+        const float v = (1.0f - 2.0f * (y + 0.5f) / n) * half;
+        rays.push_back({eye, normalize(f.forward + f.right * u + f.up * v)});
+    }
+    return rays;
+}
+
+/// n×n orthographic rays over a square of side 2·radius, in 8×8 tiles.
+std::vector<Ray> orthographic_rays(const Framing& f, int n) {
+    std::vector<Ray> rays;
+    rays.reserve(static_cast<size_t>(n) * n);
+    const Vec3 plane = f.center - f.forward * (2.0f * f.radius);
+    for (int k = 0; k < n * n; ++k) {
+        int x, y;
+        tile_pixel(k, n, x, y);
+        if (x >= n || y >= n) continue;
+        const float u = (2.0f * (x + 0.5f) / n - 1.0f) * f.radius;
+        const float v = (1.0f - 2.0f * (y + 0.5f) / n) * f.radius;
+        rays.push_back({plane + f.right * u + f.up * v, f.forward});
+    }
+    return rays;
+}
+
+struct Result {
+    float t = kInf;
+    uint32_t prim = kNoHit;
+};
+
+/// One incoherent ray per hit primary ray: from the hit point moved 1e-4 along the face normal
+/// (turned towards the primary ray's origin), in a cosine-distributed direction about it.
+std::vector<Ray> incoherent_rays(const Mesh& m, const std::vector<Ray>& primary,
+                                 const std::vector<Result>& hits) {
+    std::vector<Ray> rays;
+    for (size_t k = 0; k < primary.size(); ++k) {
+        if (hits[k].prim == kNoHit) continue;
+        const Ray& r = primary[k];
+        Vec3 n = m.face_normal(hits[k].prim);
+        if (dot(n, r.direction) > 0) n = -n;
+        const Vec3 p = r.at(hits[k].t) + n * 1e-4f;
+        // cosine-weighted: a uniform point on the unit disc lifted to the hemisphere
+        const float u1 = unit_float(hash32(2 * static_cast<uint32_t>(k)));
+        const float u2 = unit_float(hash32(2 * static_cast<uint32_t>(k) + 1));
+        const float rad = std::sqrt(u1), phi = 2.0f * 3.14159265f * u2;
+        const float lx = rad * std::cos(phi), ly = rad * std::sin(phi);
+        const float lz = std::sqrt(std::max(0.0f, 1.0f - u1));
+        // orthonormal basis about n (Duff et al., JCGT 2017)
+        const float sign = std::copysign(1.0f, n.z);
+        const float a = -1.0f / (sign + n.z), b = n.x * n.y * a;
+        const Vec3 b1{1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x};
+        const Vec3 b2{b, sign + n.y * n.y * a, -n.y};
+        rays.push_back({p, normalize(b1 * lx + b2 * ly + n * lz)});
+    }
+    return rays;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Tracing in parallel
+
+constexpr size_t kChunk = 4096;  // rays per chunk; chunks are handed out in order
+
+/// Calls trace(first, end) over all chunks of [0, count) on `threads` threads.
+void parallel_chunks(size_t count, int threads, const std::function<void(size_t, size_t)>& trace) {
+    std::atomic<size_t> next{0};
+    const auto work = [&] {
+        for (;;) {
+            const size_t begin = next.fetch_add(kChunk);
+            if (begin >= count) return;
+            trace(begin, std::min(count, begin + kChunk));
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads; ++i) pool.emplace_back(work);
+    work();
+    for (auto& t : pool) t.join();
+}
+
+/// luz: a BVH (Bvh, binary, or Bvh4, 4-wide) over the mesh's triangle boxes; a leaf slot's
+/// triangle is order()[slot], its vertices come through the mesh's index array (the
+/// standalone use of bvh.h).
+template <class B>
+struct LuzAccel {
+    const Mesh* mesh = nullptr;
+    B bvh;
+
+    Result trace(const Ray& r, uint64_t& box_tests, uint64_t& tri_tests) const {
+        const WatertightRay w = prepare_watertight(r);
+        const uint32_t* order = bvh.order().data();
+        const uint32_t* index = mesh->indices.data();
+        const Vec3* p = mesh->positions.data();
+        Result res;
+        bvh.nearest(r, 0.0f, res.t, box_tests, [&](uint32_t slot, float& t_max) {
+            const uint32_t tri = order[slot];
+            const uint32_t* i = index + 3 * tri;
+            float t, b1, b2;
+            ++tri_tests;
+            if (intersect_triangle(w, p[i[0]], p[i[1]], p[i[2]], 0.0f, t_max, t, b1, b2)) {
+                t_max = t;
+                res.prim = tri;
+            }
+        });
+        return res;
+    }
+    void trace(const std::vector<Ray>& rays, std::vector<Result>& out, int threads) const {
+        parallel_chunks(rays.size(), threads, [&](size_t begin, size_t end) {
+            uint64_t boxes = 0, tris = 0;
+            for (size_t k = begin; k < end; ++k) out[k] = trace(rays[k], boxes, tris);
+        });
+    }
+    size_t bytes() const {
+        return mesh->positions.capacity() * sizeof(Vec3) +
+               mesh->indices.capacity() * sizeof(uint32_t) + bvh.memory_bytes();
+    }
+};
+
+/// Runs f() with at most `threads` TBB worker threads (for builds that use TBB).
+void run_with_threads(int threads, const std::function<void()>& f) {
+    tbb::task_arena arena(threads);
+    arena.execute(f);
+}
+
+std::vector<Bounds3> triangle_boxes(const Mesh& m) {
+    std::vector<Bounds3> boxes(m.triangle_count());
+    for (size_t t = 0; t < boxes.size(); ++t) {
+        Vec3 p0, p1, p2;
+        m.vertices(t, p0, p1, p2);
+        boxes[t].expand(p0);
+        boxes[t].expand(p1);
+        boxes[t].expand(p2);
+    }
+    return boxes;
+}
+
+/// Embree's memory: every allocation it reports to the device's monitor, summed.
+std::atomic<int64_t> g_embree_bytes{0};
+bool monitor(void*, ssize_t bytes, bool) {
+    g_embree_bytes += bytes;
+    return true;
+}
+
+void embree_error(void*, RTCError code, const char* what) {
+    std::fprintf(stderr, "embree error %d: %s\n", static_cast<int>(code), what ? what : "");
+    std::exit(1);
+}
+
+RTCDevice embree_device(int threads) {
+    const std::string config = "threads=" + std::to_string(threads);
+    RTCDevice d = rtcNewDevice(config.c_str());
+    if (!d) throw std::runtime_error("rtcNewDevice failed");
+    rtcSetDeviceErrorFunction(d, embree_error, nullptr);
+    rtcSetDeviceMemoryMonitorFunction(d, monitor, nullptr);
+    return d;
+}
+
+/// An Embree scene of one triangle geometry with the mesh's vertices and indices (copied into
+/// Embree's own buffers), not yet committed.
+RTCScene embree_scene(RTCDevice d, const Mesh& m, RTCBuildQuality quality, bool robust) {
+    RTCScene s = rtcNewScene(d);
+    rtcSetSceneBuildQuality(s, quality);
+    rtcSetSceneFlags(s, robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+    RTCGeometry g = rtcNewGeometry(d, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetGeometryBuildQuality(g, quality);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m.positions.size()));
+    for (size_t i = 0; i < m.positions.size(); ++i) {
+        v[3 * i] = m.positions[i].x;
+        v[3 * i + 1] = m.positions[i].y;
+        v[3 * i + 2] = m.positions[i].z;
+    }
+    auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), m.triangle_count()));
+    std::memcpy(idx, m.indices.data(), m.indices.size() * sizeof(uint32_t));
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(s, g);
+    rtcReleaseGeometry(g);
+    return s;
+}
+
+struct EmbreeAccel {
+    RTCScene scene;
+
+    void trace(const std::vector<Ray>& rays, std::vector<Result>& out, int threads) const {
+        parallel_chunks(rays.size(), threads, [&](size_t begin, size_t end) {
+            RTCIntersectContext ctx;
+            rtcInitIntersectContext(&ctx);
+            RTCRayHit rh;
+            for (size_t k = begin; k < end; ++k) {
+                const Ray& r = rays[k];
+                rh.ray.org_x = r.origin.x;
+                rh.ray.org_y = r.origin.y;
+                rh.ray.org_z = r.origin.z;
+                rh.ray.tnear = 0.0f;
+                rh.ray.dir_x = r.direction.x;
+                rh.ray.dir_y = r.direction.y;
+                rh.ray.dir_z = r.direction.z;
+                rh.ray.time = 0.0f;
+                rh.ray.tfar = kInf;
+                rh.ray.mask = 0xFFFFFFFFu;
+                rh.ray.id = 0;
+                rh.ray.flags = 0;
+                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                rtcIntersect1(scene, &ctx, &rh);
+                out[k] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID
+                             ? Result{}
+                             : Result{rh.ray.tfar, rh.hit.primID};
+            }
+        });
+    }
+};
+
+/// luz's scene query (what the renderer calls): nearest_hit on a Scene holding the mesh.
+struct LuzScene {
+    Scene scene;
+
+    void trace(const std::vector<Ray>& rays, std::vector<Result>& out, int threads) const {
+        parallel_chunks(rays.size(), threads, [&](size_t begin, size_t end) {
+            IntersectCounters counters;
+            for (size_t k = begin; k < end; ++k) {
+                Hit hit;
+                out[k] = nearest_hit(scene, rays[k], 0.0f, kInf, hit, counters)
+                             ? Result{hit.t, static_cast<uint32_t>(hit.part)}
+                             : Result{};
+            }
+        });
+    }
+};
+
+// ---------------------------------------------------------------------------------------------
+// Comparison
+
+struct Agreement {
+    size_t same = 0;       ///< both miss, or both hit the same triangle
+    size_t tie = 0;        ///< both hit, other triangles at |Δt| ≤ 1e-4·t
+    size_t hit_miss = 0;   ///< one hits, the other misses
+    size_t different = 0;  ///< both hit, other triangles, t differs
+    size_t agree() const { return same + tie; }
+};
+
+Agreement compare(const std::vector<Result>& a, const std::vector<Result>& b) {
+    Agreement g;
+    for (size_t k = 0; k < a.size(); ++k) {
+        const bool ha = a[k].prim != kNoHit, hb = b[k].prim != kNoHit;
+        if (ha != hb) {
+            ++g.hit_miss;
+        } else if (!ha || a[k].prim == b[k].prim) {
+            ++g.same;
+        } else if (std::fabs(a[k].t - b[k].t) <= 1e-4f * std::max(a[k].t, b[k].t)) {
+            ++g.tie;
+        } else {
+            ++g.different;
+        }
+    }
+    return g;
+}
+
+size_t hits(const std::vector<Result>& r) {
+    return static_cast<size_t>(
+        std::count_if(r.begin(), r.end(), [](const Result& x) { return x.prim != kNoHit; }));
+}
+
+// ---------------------------------------------------------------------------------------------
+// One mesh
+
+struct Row {
+    std::string mesh, rays;
+    size_t count = 0;
+    int threads = 0;
+    double luz4 = 0, luz2 = 0, embree = 0, scene = 0;  ///< Mrays/s
+    Agreement agreement;                               ///< luz4 against Embree
+    size_t luz2_differs = 0, scene_differs = 0;        ///< rays where they differ from luz4
+};
+
+struct BuildRow {
+    std::string mesh;
+    size_t triangles = 0;
+    std::vector<double> luz2_ms, luz4_ms, medium_ms, high_ms;  ///< per thread count
+    double luz2_bytes = 0, luz4_bytes = 0, medium_bytes = 0, high_bytes = 0,
+           scene_bytes = 0;  ///< per triangle
+    double leaf = 0;         ///< mean primitives per leaf
+};
+
+std::string base_name(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+void run_mesh(const std::string& path, const Options& opt, std::vector<Row>& rows,
+              std::vector<BuildRow>& builds) {
+    // 1. The mesh, through luz's OBJ loader and mesh code (flat: positions shared by corners).
+    std::vector<std::string> warnings;
+    ObjectDesc o;
+    o.type = ShapeType::mesh;
+    o.smooth = false;
+    o.path = "objects.0";
+    o.file = path;
+    o.mesh = std::make_shared<const MeshData>(load_obj(path, false, warnings));
+    const Mesh mesh = build_mesh(o);
+    const size_t n_tri = mesh.triangle_count();
+    const std::string name = base_name(path);
+    std::printf("\n== %s: %zu triangles, %zu vertices\n", name.c_str(), n_tri,
+                mesh.positions.size());
+    std::fflush(stdout);
+
+    BuildRow build;
+    build.mesh = name;
+    build.triangles = n_tri;
+    const int build_reps = opt.build_reps > 0 ? opt.build_reps : n_tri > 200000 ? 5 : 21;
+
+    // 2. Build times. luz: triangle boxes + Bvh::build (+ the collapse to Bvh4), under a TBB
+    //    arena of 1 or 2 threads; Embree: rtcCommitScene on a device of 1 or 2 threads.
+    LuzAccel<Bvh> luz2;
+    LuzAccel<Bvh4> luz4;
+    luz2.mesh = luz4.mesh = &mesh;
+    for (int threads : opt.threads) {
+        std::vector<double> s2, s4;
+        for (int k = 0; k < build_reps; ++k) {
+            double t0 = now_seconds();
+            Bvh b2;
+            run_with_threads(threads, [&] { b2 = Bvh::build(triangle_boxes(mesh), opt.bvh); });
+            s2.push_back(now_seconds() - t0);
+            t0 = now_seconds();
+            Bvh4 b4;
+            run_with_threads(threads, [&] { b4 = Bvh4::build(triangle_boxes(mesh), opt.bvh); });
+            s4.push_back(now_seconds() - t0);
+            if (k == 0) {
+                luz2.bvh = std::move(b2);
+                luz4.bvh = std::move(b4);
+            }
+        }
+        build.luz2_ms.push_back(1000 * median(s2));
+        build.luz4_ms.push_back(1000 * median(s4));
+    }
+    {
+        size_t leaves = 0, slots = 0;
+        for (const BvhNode& nd : luz2.bvh.nodes())
+            if (nd.leaf()) ++leaves, slots += nd.count;
+        build.leaf = static_cast<double>(slots) / static_cast<double>(leaves);
+    }
+    build.luz2_bytes = static_cast<double>(luz2.bytes()) / static_cast<double>(n_tri);
+    build.luz4_bytes = static_cast<double>(luz4.bytes()) / static_cast<double>(n_tri);
+
+    RTCScene traced = nullptr;
+    RTCDevice traced_device = nullptr;
+    for (size_t ti = 0; ti < opt.threads.size(); ++ti) {
+        RTCDevice d = embree_device(opt.threads[ti]);
+        for (RTCBuildQuality q : {RTC_BUILD_QUALITY_MEDIUM, RTC_BUILD_QUALITY_HIGH}) {
+            std::vector<double> s;
+            for (int k = 0; k < build_reps; ++k) {
+                const int64_t before = g_embree_bytes;
+                RTCScene sc = embree_scene(d, mesh, q, opt.robust);
+                const double t0 = now_seconds();
+                rtcCommitScene(sc);
+                s.push_back(now_seconds() - t0);
+                const double bytes = static_cast<double>(g_embree_bytes - before) / n_tri;
+                (q == RTC_BUILD_QUALITY_MEDIUM ? build.medium_bytes : build.high_bytes) = bytes;
+                // the scene traced: medium quality, on the device with the most threads
+                if (q == RTC_BUILD_QUALITY_MEDIUM && k == 0 && ti + 1 == opt.threads.size()) {
+                    traced = sc;
+                } else {
+                    rtcReleaseScene(sc);
+                }
+            }
+            (q == RTC_BUILD_QUALITY_MEDIUM ? build.medium_ms : build.high_ms)
+                .push_back(1000 * median(s));
+        }
+        if (ti + 1 == opt.threads.size()) {
+            traced_device = d;
+        } else {
+            rtcReleaseDevice(d);
+        }
+    }
+    EmbreeAccel embree{traced};
+
+    std::unique_ptr<LuzScene> scene;
+    if (opt.scene) {
+        SceneDesc desc;
+        desc.render.pipeline = Pipeline::raytrace;
+        desc.render.accel = Accel::bvh;
+        desc.materials.resize(1);
+        desc.objects = {o};
+        scene = std::make_unique<LuzScene>(LuzScene{build_scene(desc)});
+        build.scene_bytes = static_cast<double>(scene->scene.bvh_bytes() +
+                                                mesh.positions.capacity() * sizeof(Vec3) +
+                                                mesh.indices.capacity() * sizeof(uint32_t)) /
+                            static_cast<double>(n_tri);
+    }
+    builds.push_back(build);
+    std::printf("build (%d thread): luz Bvh %.2f ms, Bvh4 %.2f, embree medium %.2f, high %.2f\n",
+                opt.threads[0], build.luz2_ms[0], build.luz4_ms[0], build.medium_ms[0],
+                build.high_ms[0]);
+    std::fflush(stdout);
+
+    // 3. Rays: primary (perspective, orthographic), then incoherent rays from the perspective
+    //    hits (luz's, traced once untimed).
+    const Framing f = frame_mesh(mesh);
+    struct RaySet {
+        std::string name;
+        std::vector<Ray> rays;
+    };
+    std::vector<RaySet> sets;
+    sets.push_back({"perspective", perspective_rays(f, opt.size)});
+    sets.push_back({"orthographic", orthographic_rays(f, opt.size)});
+    {
+        std::vector<Result> first(sets[0].rays.size());
+        luz4.trace(sets[0].rays, first, 2);
+        sets.push_back({"incoherent", incoherent_rays(mesh, sets[0].rays, first)});
+    }
+
+    // 4. Counters per ray (luz, untimed).
+    for (const RaySet& s : sets) {
+        uint64_t boxes2 = 0, tris2 = 0, boxes4 = 0, tris4 = 0;
+        for (const Ray& r : s.rays) luz2.trace(r, boxes2, tris2);
+        for (const Ray& r : s.rays) luz4.trace(r, boxes4, tris4);
+        const double n = static_cast<double>(s.rays.size());
+        std::printf(
+            "%-12s %8zu rays: per ray, Bvh %.1f box and %.2f triangle tests, Bvh4 %.1f and "
+            "%.2f\n",
+            s.name.c_str(), s.rays.size(), boxes2 / n, tris2 / n, boxes4 / n, tris4 / n);
+    }
+    std::fflush(stdout);
+
+    // 5. Timing: luz and Embree alternately, per ray set and thread count.
+    for (const RaySet& s : sets) {
+        for (int threads : opt.threads) {
+            const size_t count = s.rays.size();
+            std::vector<Result> r4(count), r2(count), re(count), rs(count);
+            std::vector<std::function<void()>> configs = {
+                [&] { luz4.trace(s.rays, r4, threads); },
+                [&] { embree.trace(s.rays, re, threads); },
+                [&] { luz2.trace(s.rays, r2, threads); }};
+            if (scene) configs.push_back([&] { scene->trace(s.rays, rs, threads); });
+            const std::vector<double> sec = interleaved(configs, opt.reps, opt.idle_wait);
+            Row row;
+            row.mesh = name;
+            row.rays = s.name;
+            row.count = count;
+            row.threads = threads;
+            const double n = static_cast<double>(count) * 1e-6;
+            row.luz4 = n / sec[0];
+            row.embree = n / sec[1];
+            row.luz2 = n / sec[2];
+            if (scene) row.scene = n / sec[3];
+            row.agreement = compare(r4, re);
+            row.luz2_differs = count - compare(r4, r2).same;
+            if (scene) row.scene_differs = count - compare(r4, rs).same;
+            std::printf(
+                "%-12s %dt: Mrays/s luz Bvh4 %6.2f, Bvh %6.2f, embree %6.2f (Bvh4/embree %.2f)"
+                "%s; hits luz %zu embree %zu; agree %zu/%zu (same %zu, tie %zu, hit/miss %zu, "
+                "other %zu); Bvh differs on %zu, scene on %zu\n",
+                s.name.c_str(), threads, row.luz4, row.luz2, row.embree, row.luz4 / row.embree,
+                scene ? (", scene " + std::to_string(row.scene)).c_str() : "", hits(r4), hits(re),
+                row.agreement.agree(), count, row.agreement.same, row.agreement.tie,
+                row.agreement.hit_miss, row.agreement.different, row.luz2_differs,
+                row.scene_differs);
+            std::fflush(stdout);
+            rows.push_back(row);
+        }
+    }
+    rtcReleaseScene(traced);
+    rtcReleaseDevice(traced_device);
+}
+
+// ---------------------------------------------------------------------------------------------
+
+void usage(FILE* out) {
+    std::fprintf(
+        out,
+        "usage: bvh_vs_embree [--size N] [--reps N] [--threads 1,2] [--idle-wait S] [--robust]\n"
+        "                     [--scene] [--build-reps N] [--cpu-time] [--bins N] [--leaf N]\n"
+        "                     [--traversal-cost C] MESH.obj...\n"
+        "  Builds each OBJ mesh into luz's BVH and into Embree 3, traces N×N perspective and\n"
+        "  orthographic primary rays (default 1024) and one incoherent ray per primary hit\n"
+        "  with both (rtcIntersect1), on each thread count; prints Mrays/s (median of --reps\n"
+        "  timed passes, default 5), the ratio luz/Embree, the hit agreement, build times and\n"
+        "  bytes per triangle. --robust: Embree's RTC_SCENE_FLAG_ROBUST. --scene: also time\n"
+        "  luz's scene query nearest_hit(). Runs disturbed by other processes are repeated\n"
+        "  after waiting up to --idle-wait seconds (default 60; 0: never) for an idle machine.\n"
+        "  --bins, --leaf, --traversal-cost: luz's BvhOptions (default: its defaults).\n"
+        "  --build-reps: builds timed per engine (default 21, or 5 above 200k triangles).\n"
+        "  --cpu-time: rays per CPU second of the process instead of per wall second (only\n"
+        "  for comparing variants on a busy machine; not for published figures).\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options opt;
+    try {
+        for (int i = 1; i < argc; ++i) {
+            const std::string a = argv[i];
+            const auto next = [&]() -> std::string {
+                if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
+                return argv[++i];
+            };
+            if (a == "--size") {
+                opt.size = std::stoi(next());
+            } else if (a == "--reps") {
+                opt.reps = std::stoi(next());
+            } else if (a == "--threads") {
+                opt.threads.clear();
+                const std::string list = next();
+                for (size_t p = 0; p < list.size();) {
+                    const size_t q = list.find(',', p);
+                    opt.threads.push_back(std::stoi(list.substr(p, q - p)));
+                    p = q == std::string::npos ? list.size() : q + 1;
+                }
+            } else if (a == "--idle-wait") {
+                opt.idle_wait = std::stod(next());
+            } else if (a == "--robust") {
+                opt.robust = true;
+            } else if (a == "--scene") {
+                opt.scene = true;
+            } else if (a == "--cpu-time") {
+                opt.cpu_time = g_cpu_time = true;
+            } else if (a == "--bins") {
+                opt.bvh.bins = std::stoi(next());
+            } else if (a == "--leaf") {
+                opt.bvh.max_leaf_size = static_cast<uint32_t>(std::stoi(next()));
+            } else if (a == "--traversal-cost") {
+                opt.bvh.traversal_cost = std::stof(next());
+            } else if (a == "--build-reps") {
+                opt.build_reps = std::stoi(next());
+            } else if (a == "--help" || a == "-h") {
+                usage(stdout);
+                return 0;
+            } else if (!a.empty() && a[0] == '-') {
+                throw std::runtime_error("unknown option " + a);
+            } else {
+                opt.meshes.push_back(a);
+            }
+        }
+        if (opt.meshes.empty()) throw std::runtime_error("no mesh given");
+        if (opt.size < 8 || opt.reps < 1 || opt.threads.empty())
+            throw std::runtime_error("bad --size, --reps or --threads");
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bvh_vs_embree: %s\n", e.what());
+        usage(stderr);
+        return 2;
+    }
+
+    std::vector<Row> rows;
+    std::vector<BuildRow> builds;
+    try {
+        RTCDevice probe = embree_device(1);
+        std::printf("Embree %zd.%zd.%zd, %s rays, %d×%d primary rays, %d timed passes\n",
+                    rtcGetDeviceProperty(probe, RTC_DEVICE_PROPERTY_VERSION_MAJOR),
+                    rtcGetDeviceProperty(probe, RTC_DEVICE_PROPERTY_VERSION_MINOR),
+                    rtcGetDeviceProperty(probe, RTC_DEVICE_PROPERTY_VERSION_PATCH),
+                    opt.robust ? "robust" : "default", opt.size, opt.size, opt.reps);
+        rtcReleaseDevice(probe);
+        if (opt.idle_wait > 0) wait_for_idle(opt.idle_wait);
+        for (const std::string& m : opt.meshes) run_mesh(m, opt, rows, builds);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bvh_vs_embree: %s\n", e.what());
+        return 2;
+    }
+
+    // Summary tables.
+    std::printf(
+        "\nTracing, Mrays/s (median of %d passes): luz Bvh4 (4-wide), luz Bvh (binary), Embree "
+        "(rtcIntersect1)%s;\nratios luz/Embree; agree = Bvh4 and Embree give the same hit or "
+        "miss and the same triangle, or |dt| <= 1e-4 t\n",
+        opt.reps, opt.scene ? ", luz scene query nearest_hit()" : "");
+    std::printf("%-15s %-12s %8s %3s %7s %7s %7s %s %6s %6s  %s\n", "mesh", "rays", "count", "thr",
+                "Bvh4", "Bvh", "embree", opt.scene ? "  scene" : "", "r_Bvh4", "r_Bvh", "agree");
+    for (const Row& r : rows) {
+        char scene[32] = "";
+        if (opt.scene) std::snprintf(scene, sizeof scene, "%7.2f", r.scene);
+        std::printf("%-15s %-12s %8zu %3d %7.2f %7.2f %7.2f %s %6.2f %6.2f  %zu/%zu\n",
+                    r.mesh.c_str(), r.rays.c_str(), r.count, r.threads, r.luz4, r.luz2, r.embree,
+                    scene, r.luz4 / r.embree, r.luz2 / r.embree, r.agreement.agree(), r.count);
+    }
+    std::printf(
+        "\nBuild, ms (median): luz Bvh = triangle boxes + Bvh::build, Bvh4 = that + collapse; "
+        "Embree rtcCommitScene, medium and high quality.\nMemory, bytes per triangle: luz = mesh "
+        "vertex and index arrays + nodes + order; Embree = all it allocates (monitor)\n");
+    std::printf("%-15s %9s", "mesh", "triangles");
+    for (int t : opt.threads) std::printf("   Bvh_%dt  Bvh4_%dt   med_%dt  high_%dt", t, t, t, t);
+    std::printf("  Bvh4/med   Bvh_B  Bvh4_B   med_B  high_B%s  leaf\n",
+                opt.scene ? " scene_B" : "");
+    for (const BuildRow& b : builds) {
+        std::printf("%-15s %9zu", b.mesh.c_str(), b.triangles);
+        for (size_t i = 0; i < opt.threads.size(); ++i)
+            std::printf(" %8.2f %8.2f %8.2f %8.2f", b.luz2_ms[i], b.luz4_ms[i], b.medium_ms[i],
+                        b.high_ms[i]);
+        std::printf("  %8.2f %7.1f %7.1f %7.1f %7.1f", b.luz4_ms.back() / b.medium_ms.back(),
+                    b.luz2_bytes, b.luz4_bytes, b.medium_bytes, b.high_bytes);
+        if (opt.scene) std::printf(" %7.1f", b.scene_bytes);
+        std::printf("  %4.2f\n", b.leaf);
+    }
+    return 0;
+}
