@@ -1,6 +1,6 @@
-// Bvh: a bounding volume hierarchy over any primitives given by their bounds. Binned SAH build,
-// a flat array of 32-byte nodes in depth-first order, and two traversals: nearest (ordered,
-// near child first, nothing beyond the nearest hit so far) and any (stops when told to).
+// Bvh: a binary BVH over any primitives' bounds — parallel binned SAH build, 32-byte nodes depth
+// first, nearest (near child first) and any traversals; collapse it to a WideBvh (wide_bvh.h)
+// for speed, as scenes do.
 //
 // Standalone use (e.g. a benchmark over one mesh):
 //     std::vector<Bounds3> boxes = ...;              // one per triangle
@@ -10,8 +10,8 @@
 //     float t_max = inf;
 //     bvh.nearest(ray, 0.0f, t_max, box_tests, [&](uint32_t i, float& t_max) {
 //         /* test primitive bvh.order()[i]; on a hit at t < t_max, set t_max = t */ });
-// The scene's BVH (geometry/scene.h) keeps its primitives in leaf order, so slot i is the
-// primitive itself.
+// The scene's BVH (geometry/scene.h, a Bvh8) keeps its primitives in leaf order, so slot i is
+// the primitive itself.
 #pragma once
 
 #include <cstdint>
@@ -81,7 +81,8 @@ class Bvh {
     static constexpr int kMaxDepth = 96;  ///< traversal stack size (build depth stays below)
 
   private:
-    friend class Bvh4;  // takes the order when collapsing (bvh4.h)
+    template <int W>
+    friend class WideBvh;  // takes the order when collapsing (wide_bvh.h)
     std::vector<BvhNode> nodes_;
     std::vector<uint32_t> order_;
 };

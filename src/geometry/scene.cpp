@@ -51,7 +51,7 @@ void build_bvh(Scene& scene) {
             boxes.push_back(scene.bounds[i]);
         }
     }
-    scene.bvh = Bvh::build(boxes);
+    scene.bvh = Bvh8::build(boxes);
     // Primitives in leaf order (those with empty bounds, never hit, are left out).
     scene.bvh_prims.clear();
     scene.bvh_prims.reserve(scene.bvh.order().size());

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/bvh.h"
+#include "geometry/wide_bvh.h"
 #include "geometry/shape.h"
 #include "scene/scene_desc.h"
 
@@ -27,8 +27,9 @@ struct Scene {
     uint64_t mesh_triangles = 0;  ///< triangles in all meshes
 
     // Ray queries (scene_query.h). The BVH holds every bounded shape and every mesh triangle;
-    // unbounded shapes (planes) are tested apart. Built by build_bvh().
-    Bvh bvh;
+    // unbounded shapes (planes) are tested apart. Built by build_bvh(): binned SAH, collapsed
+    // to 8-wide nodes (wide_bvh.h).
+    Bvh8 bvh;
     std::vector<BvhPrim> bvh_prims;   ///< in the BVH's leaf order: slot i is bvh_prims[i]
     std::vector<uint32_t> unbounded;  ///< shapes outside the BVH (planes), in scene order
     bool has_bvh = false;  ///< build_bvh() ran: queries use the BVH when render.accel is bvh
@@ -45,8 +46,8 @@ struct Scene {
 /// rays will use it: `render.accel` is bvh and the pipeline is raycast or raytrace.
 Scene build_scene(SceneDesc desc);
 
-/// (Re)builds scene.bvh over the scene's shapes and mesh triangles (binned SAH, bvh.h) and
-/// times it in bvh_build_seconds.
+/// (Re)builds scene.bvh over the scene's shapes and mesh triangles (binned SAH, bvh.h, then
+/// 8-wide, wide_bvh.h) and times it in bvh_build_seconds.
 void build_bvh(Scene& scene);
 
 }  // namespace luz

@@ -84,13 +84,13 @@ double refined_away_from_edges(const AaMask& mask, const std::vector<bool>& edge
 class AdaptiveOnPrimitives : public testing::TestWithParam<Pipeline> {};
 
 // The lecture's "more rays only where the colour changes strongly", on demo:primitives
-// (400×300, threshold 0.05, max_level 4): adaptive refines fewer than 15 % of the pixels, every
+// (320×240, threshold 0.05, max_level 4): adaptive refines fewer than 15 % of the pixels, every
 // one of them within 2 pixels of a colour edge, and gives the converged picture (a 256-sample
 // grid) within 2/255 on at least 99 % of the pixels — closer than a 16-sample grid, which
 // itself misses that mark along the floor's straight checker edges (its coverage steps are
 // quarters of a pixel), with far fewer samples.
 TEST_P(AdaptiveOnPrimitives, RefinesFewPixelsNearEdgesAndBeatsA16SampleGrid) {
-    SceneDesc d = load_scene("demo:primitives", {{"image.width", "400"}, {"image.height", "300"}});
+    SceneDesc d = load_scene("demo:primitives", {{"image.width", "320"}, {"image.height", "240"}});
     d.render.pipeline = GetParam();
     d.render.antialias.threshold = 0.05f;
     d.render.antialias.max_level = 4;
@@ -136,7 +136,9 @@ INSTANTIATE_TEST_SUITE_P(Pipelines, AdaptiveOnPrimitives,
 // The sample positions are the same in every pipeline, so raycast still equals zbuffer up to
 // tessellation with antialiasing on (the SPEC's 99 % of pixels within 2/255).
 TEST(Antialiasing, RaycastEqualsZbufferWithGridAndAdaptive) {
-    const SceneDesc d = load_scene("demo:primitives", {{"render.tessellation", "512"}});
+    const SceneDesc d = load_scene(
+        "demo:primitives",
+        {{"render.tessellation", "512"}, {"image.width", "400"}, {"image.height", "300"}});
     for (const SceneDesc& aa :
          {with_aa(d, AaMode::grid, 4), with_aa(d, AaMode::grid, 9, AaFilter::tent),
           with_aa(d, AaMode::adaptive)}) {

@@ -1,0 +1,317 @@
+// WideBvh<W> (Bvh4, Bvh8): the binary Bvh collapsed into W-wide nodes holding their child boxes
+// side by side, tested by one SIMD slab test: fewer levels and node visits. Same leaves, order()
+// and traversal contract as Bvh (nearest and any with slot callbacks).
+//
+//     const Bvh8 bvh = Bvh8::build(boxes);  // or Bvh8(Bvh::build(boxes))
+//     bvh.nearest(ray, 0.0f, t_max, box_tests, [&](uint32_t slot, float& t_max) { ... });
+//
+// Bvh8 tests its eight boxes with AVX (else as two halves with SSE2); Bvh4 with SSE2.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "geometry/bvh.h"
+
+namespace luz {
+
+/// W child boxes by axis (lo[axis][child], hi[axis][child]); child k is a node (count[k] = 0,
+/// child[k] its index), a leaf (count[k] > 0 primitives from slot child[k] of order()), or
+/// unused (count[k] = 0, child[k] = kUnused, an empty box that no ray meets).
+template <int W>
+struct alignas(64) WideBvhNode {
+    float lo[3][W];
+    float hi[3][W];
+    uint32_t child[W];
+    uint32_t count[W];
+
+    static constexpr uint32_t kUnused = 0xFFFFFFFFu;
+    WideBvhNode() {}  // left uninitialized: the collapse writes every field
+};
+static_assert(sizeof(WideBvhNode<4>) == 128 && sizeof(WideBvhNode<8>) == 256);
+
+template <int W>
+class WideBvh {
+    static_assert(W == 4 || W == 8);
+
+  public:
+    using Node = WideBvhNode<W>;
+
+    WideBvh() = default;
+    /// Collapses a binary BVH (taking its leaf order): each wide node gathers up to W
+    /// descendants of a binary node, opening the largest (by surface area) interior one first;
+    /// nodes depth first. The tree depends only on the binary one.
+    explicit WideBvh(Bvh&& binary);
+    /// WideBvh(Bvh::build(bounds, options)).
+    static WideBvh build(std::span<const Bounds3> bounds, const BvhOptions& options = {}) {
+        return WideBvh(Bvh::build(bounds, options));
+    }
+
+    bool empty() const { return nodes_.empty(); }
+    const std::vector<Node>& nodes() const { return nodes_; }
+    /// Primitive ids in leaf order, as Bvh::order().
+    const std::vector<uint32_t>& order() const { return order_; }
+    /// Bytes held by the nodes and the order.
+    size_t memory_bytes() const {
+        return nodes_.capacity() * sizeof(Node) + order_.capacity() * sizeof(uint32_t);
+    }
+
+    /// As Bvh::nearest(): test(slot, t_max) for every slot of every leaf whose box r meets
+    /// before t_max (with the same margin), children visited nearest first; each node visit
+    /// adds W to box_tests.
+    template <class Test>
+    void nearest(const Ray& r, float t_min, float& t_max, uint64_t& box_tests, Test&& test) const;
+
+    /// As Bvh::any(): visit(slot) for every slot of every leaf whose box r meets, until it
+    /// returns true; returns whether it did.
+    template <class Visit>
+    bool any(const Ray& r, float t_min, float t_max, uint64_t& box_tests, Visit&& visit) const;
+
+  private:
+    static constexpr int kStack = (W - 1) * Bvh::kMaxDepth + 4;  // ≤ W − 1 pushes per level
+    std::vector<Node> nodes_;
+    std::vector<uint32_t> order_;
+};
+
+using Bvh4 = WideBvh<4>;
+using Bvh8 = WideBvh<8>;
+
+namespace bvh_detail {
+
+/// A ray prepared for the wide box test: per axis the origin and 1/direction (SIMD lanes alike)
+/// and where in a node its near and far planes are (hi for a negative 1/direction, else lo).
+template <int W>
+struct WideRay {
+#if defined(__AVX__)
+    __m256 o[3], inv[3];
+#elif defined(__SSE2__)
+    __m128 o[3], inv[3];
+#endif
+    float os[3], invs[3];
+    uint32_t near_at[3], far_at[3];  // byte offsets in WideBvhNode<W>
+
+    explicit WideRay(const Ray& r) {
+        for (int a = 0; a < 3; ++a) {
+            os[a] = r.origin[a];
+            invs[a] = 1.0f / r.direction[a];
+#if defined(__AVX__)
+            o[a] = _mm256_set1_ps(os[a]);
+            inv[a] = _mm256_set1_ps(invs[a]);
+#elif defined(__SSE2__)
+            o[a] = _mm_set1_ps(os[a]);
+            inv[a] = _mm_set1_ps(invs[a]);
+#endif
+            const uint32_t lo = static_cast<uint32_t>(a * W * 4);
+            const uint32_t hi = static_cast<uint32_t>((3 + a) * W * 4);
+            const bool negative = std::signbit(invs[a]);  // −∞ for a −0 component
+            near_at[a] = negative ? hi : lo;
+            far_at[a] = negative ? lo : hi;
+        }
+    }
+};
+
+#if defined(__SSE2__)
+/// Four lanes of the slab test from byte offset `lane` of the planes (see hit_wide()).
+template <int W>
+inline int hit_lanes4(const char* base, const WideRay<W>& r, float t_min, float t_max, float* entry,
+                      int lane) {
+#if defined(__AVX__)
+    const __m128 o[3] = {_mm256_castps256_ps128(r.o[0]), _mm256_castps256_ps128(r.o[1]),
+                         _mm256_castps256_ps128(r.o[2])};
+    const __m128 inv[3] = {_mm256_castps256_ps128(r.inv[0]), _mm256_castps256_ps128(r.inv[1]),
+                           _mm256_castps256_ps128(r.inv[2])};
+#else
+    const __m128* o = r.o;
+    const __m128* inv = r.inv;
+#endif
+    __m128 tn = _mm_set1_ps(t_min), tf = _mm_set1_ps(t_max);
+    const __m128 scale = _mm_set1_ps(kExitScale);
+    for (int a = 0; a < 3; ++a) {
+        const __m128 near_plane =
+            _mm_load_ps(reinterpret_cast<const float*>(base + r.near_at[a] + lane));
+        const __m128 far_plane =
+            _mm_load_ps(reinterpret_cast<const float*>(base + r.far_at[a] + lane));
+        const __m128 t0 = _mm_mul_ps(_mm_sub_ps(near_plane, o[a]), inv[a]);
+        const __m128 t1 = _mm_mul_ps(_mm_mul_ps(_mm_sub_ps(far_plane, o[a]), inv[a]), scale);
+        tn = _mm_max_ps(t0, tn);  // NaN → tn
+        tf = _mm_min_ps(t1, tf);  // NaN → tf
+    }
+    _mm_storeu_ps(entry, tn);
+    return _mm_movemask_ps(_mm_cmple_ps(tn, tf));
+}
+#endif
+
+/// The W boxes of n against r over [t_min, t_max]: bit k set if child k is hit, its entry
+/// distance in entry[k]. Per lane the very arithmetic of hit_node(): the same hits and entries
+/// (a NaN from 0·∞ loses in max/min against the running interval, which it leaves as it is).
+template <int W>
+inline int hit_wide(const WideBvhNode<W>& n, const WideRay<W>& r, float t_min, float t_max,
+                    float* entry) {
+    const char* base = reinterpret_cast<const char*>(&n);
+#if defined(__AVX__)
+    if constexpr (W == 8) {
+        __m256 tn = _mm256_set1_ps(t_min), tf = _mm256_set1_ps(t_max);
+        const __m256 scale = _mm256_set1_ps(kExitScale);
+        for (int a = 0; a < 3; ++a) {
+            const __m256 near_plane =
+                _mm256_load_ps(reinterpret_cast<const float*>(base + r.near_at[a]));
+            const __m256 far_plane =
+                _mm256_load_ps(reinterpret_cast<const float*>(base + r.far_at[a]));
+            const __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(near_plane, r.o[a]), r.inv[a]);
+            const __m256 t1 =
+                _mm256_mul_ps(_mm256_mul_ps(_mm256_sub_ps(far_plane, r.o[a]), r.inv[a]), scale);
+            tn = _mm256_max_ps(t0, tn);  // NaN → tn
+            tf = _mm256_min_ps(t1, tf);  // NaN → tf
+        }
+        _mm256_storeu_ps(entry, tn);
+        return _mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OQ));
+    }
+#endif
+#if defined(__SSE2__)
+    if constexpr (W == 4) {
+        return hit_lanes4(base, r, t_min, t_max, entry, 0);
+    } else {
+        return hit_lanes4(base, r, t_min, t_max, entry, 0) |
+               (hit_lanes4(base, r, t_min, t_max, entry + 4, 16) << 4);
+    }
+#else
+    int mask = 0;
+    for (int k = 0; k < W; ++k) {
+        float tn = t_min, tf = t_max;
+        for (int a = 0; a < 3; ++a) {
+            const float near_plane = reinterpret_cast<const float*>(base + r.near_at[a])[k];
+            const float far_plane = reinterpret_cast<const float*>(base + r.far_at[a])[k];
+            const float t0 = (near_plane - r.os[a]) * r.invs[a];
+            const float t1 = (far_plane - r.os[a]) * r.invs[a] * kExitScale;
+            tn = t0 > tn ? t0 : tn;
+            tf = t1 < tf ? t1 : tf;
+        }
+        entry[k] = tn;
+        if (tn <= tf) mask |= 1 << k;
+    }
+    return mask;
+#endif
+}
+
+}  // namespace bvh_detail
+
+template <int W>
+template <class Test>
+void WideBvh<W>::nearest(const Ray& r, float t_min, float& t_max, uint64_t& box_tests,
+                         Test&& test) const {
+    using namespace bvh_detail;
+    if (nodes_.empty()) return;
+    const Node* nodes = nodes_.data();
+    struct Entry {
+        uint32_t child, count;  // a node (count 0) or a leaf range
+        float entry;
+    };
+    Entry stack[kStack];
+    int top = 0;
+    const WideRay<W> wr(r);
+    Entry cur{0, 0, t_min};
+    for (;;) {
+        if (cur.count > 0) {
+            for (uint32_t i = cur.child, end = cur.child + cur.count; i < end; ++i) test(i, t_max);
+        } else {
+            const Node& n = nodes[cur.child];
+            float e[W];
+            box_tests += W;
+            unsigned mask = static_cast<unsigned>(hit_wide<W>(n, wr, t_min, with_margin(t_max), e));
+            if (mask != 0) {
+                // one hit: go there; two: the nearer now, the farther later; more: sorted
+                const int k0 = __builtin_ctz(mask);
+                mask &= mask - 1;
+                if (mask == 0) {
+                    cur = {n.child[k0], n.count[k0], e[k0]};
+                    continue;
+                }
+                const int k1 = __builtin_ctz(mask);
+                mask &= mask - 1;
+                if (mask == 0) {
+                    const bool swap = e[k1] < e[k0];
+                    const int near = swap ? k1 : k0, far = swap ? k0 : k1;
+                    stack[top++] = {n.child[far], n.count[far], e[far]};
+                    cur = {n.child[near], n.count[near], e[near]};
+                    continue;
+                }
+                Entry h[W];
+                h[0] = {n.child[k0], n.count[k0], e[k0]};
+                h[1] = {n.child[k1], n.count[k1], e[k1]};
+                int m = 2;
+                do {
+                    const int k = __builtin_ctz(mask);
+                    h[m++] = {n.child[k], n.count[k], e[k]};
+                    mask &= mask - 1;
+                } while (mask != 0);
+                // farthest first onto the stack (insertion sort, m ≤ W), the nearest now
+                for (int i = 1; i < m; ++i) {
+                    for (int j = i; j > 0 && h[j - 1].entry < h[j].entry; --j) {
+                        const Entry s = h[j];
+                        h[j] = h[j - 1];
+                        h[j - 1] = s;
+                    }
+                }
+                for (int i = 0; i + 1 < m; ++i) stack[top++] = h[i];
+                cur = h[m - 1];
+                continue;
+            }
+        }
+        // next entry from the stack, skipping those entered beyond the nearest hit so far
+        for (;;) {
+            if (top == 0) return;
+            const Entry& s = stack[--top];
+            if (s.entry <= with_margin(t_max)) {
+                cur = s;
+                break;
+            }
+        }
+    }
+}
+
+template <int W>
+template <class Visit>
+bool WideBvh<W>::any(const Ray& r, float t_min, float t_max, uint64_t& box_tests,
+                     Visit&& visit) const {
+    using namespace bvh_detail;
+    if (nodes_.empty()) return false;
+    const Node* nodes = nodes_.data();
+    struct Entry {
+        uint32_t child, count;
+    };
+    Entry stack[kStack];
+    int top = 0;
+    const WideRay<W> wr(r);
+    const float limit = with_margin(t_max);
+    Entry cur{0, 0};
+    for (;;) {
+        if (cur.count > 0) {
+            for (uint32_t i = cur.child, end = cur.child + cur.count; i < end; ++i)
+                if (visit(i)) return true;
+        } else {
+            const Node& n = nodes[cur.child];
+            float e[W];
+            box_tests += W;
+            unsigned mask = static_cast<unsigned>(hit_wide<W>(n, wr, t_min, limit, e));
+            if (mask != 0) {
+                int k = __builtin_ctz(mask);
+                cur = {n.child[k], n.count[k]};
+                for (mask &= mask - 1; mask != 0; mask &= mask - 1) {
+                    k = __builtin_ctz(mask);
+                    stack[top++] = {n.child[k], n.count[k]};
+                }
+                continue;
+            }
+        }
+        if (top == 0) return false;
+        cur = stack[--top];
+    }
+}
+
+extern template class WideBvh<4>;
+extern template class WideBvh<8>;
+
+}  // namespace luz

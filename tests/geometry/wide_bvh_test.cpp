@@ -1,0 +1,235 @@
+// WideBvh (Bvh4, Bvh8): the collapsed trees hold every primitive once, inside boxes that are
+// the binary tree's; their traversals give the binary tree's answers (nearest hit with ties,
+// any hit, rays in the plane of a box face); the tree is the same for any thread count.
+#include "geometry/wide_bvh.h"
+
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cstring>
+#include <random>
+#include <set>
+#include <vector>
+
+#include "geometry/intersect.h"
+
+namespace luz {
+namespace {
+
+using Rng = std::mt19937;
+
+float uniform(Rng& rng, float lo, float hi) {
+    return std::uniform_real_distribution<float>(lo, hi)(rng);
+}
+Vec3 random_point(Rng& rng, float lo, float hi) {
+    return {uniform(rng, lo, hi), uniform(rng, lo, hi), uniform(rng, lo, hi)};
+}
+
+/// A triangle soup in [−4, 4]³ on a grid of 1/8 (exactly representable: shared vertices,
+/// coplanar faces and ties are common), and its boxes.
+struct Soup {
+    std::vector<Vec3> p;  // 3 per triangle
+    std::vector<Bounds3> boxes;
+};
+
+Soup make_soup(int n, uint32_t seed) {
+    Rng rng(seed);
+    const auto grid = [&] {
+        return Vec3{std::round(uniform(rng, -32, 32)) / 8, std::round(uniform(rng, -32, 32)) / 8,
+                    std::round(uniform(rng, -32, 32)) / 8};
+    };
+    Soup s;
+    for (int t = 0; t < n; ++t) {
+        const Vec3 a = grid();
+        Vec3 b = a + (grid() * 0.125f), c = a + (grid() * 0.125f);
+        if (t % 5 == 0) b.z = c.z = a.z;  // axis-aligned faces: box faces in their planes
+        s.p.insert(s.p.end(), {a, b, c});
+        Bounds3 box;
+        box.expand(a);
+        box.expand(b);
+        box.expand(c);
+        s.boxes.push_back(box);
+    }
+    return s;
+}
+
+/// The nearest hit of r among the soup's triangles through `bvh` (ties: the lowest triangle),
+/// as (t, triangle), or (∞, −1).
+template <class B>
+std::pair<float, int> nearest(const B& bvh, const Soup& s, const Ray& r) {
+    const WatertightRay w = prepare_watertight(r);
+    float best = std::numeric_limits<float>::infinity();
+    int tri = -1;
+    uint64_t boxes = 0;
+    float t_max = best;
+    bvh.nearest(r, 0.0f, t_max, boxes, [&](uint32_t slot, float& limit) {
+        const uint32_t id = bvh.order()[slot];
+        float t, b1, b2;
+        if (intersect_triangle(w, s.p[3 * id], s.p[3 * id + 1], s.p[3 * id + 2], 0.0f,
+                               std::nextafter(best, std::numeric_limits<float>::infinity()), t, b1,
+                               b2) &&
+            (t < best || (t == best && static_cast<int>(id) < tri))) {
+            best = t;
+            tri = static_cast<int>(id);
+            limit = best;
+        }
+    });
+    return {best, tri};
+}
+
+/// Whether any triangle meets r in (0, t_max), through `bvh`.
+template <class B>
+bool any_hit(const B& bvh, const Soup& s, const Ray& r, float t_max) {
+    const WatertightRay w = prepare_watertight(r);
+    uint64_t boxes = 0;
+    return bvh.any(r, 0.0f, t_max, boxes, [&](uint32_t slot) {
+        const uint32_t id = bvh.order()[slot];
+        float t, b1, b2;
+        return intersect_triangle(w, s.p[3 * id], s.p[3 * id + 1], s.p[3 * id + 2], 0.0f, t_max, t,
+                                  b1, b2);
+    });
+}
+
+/// Random rays, a quarter aimed at vertices, an eighth along an axis through grid points
+/// (origins on box face planes, zero direction components, ±0).
+std::vector<Ray> random_rays(const Soup& s, int n, uint32_t seed) {
+    Rng rng(seed);
+    std::vector<Ray> rays;
+    for (int k = 0; k < n; ++k) {
+        Ray r{random_point(rng, -6, 6), normalize(random_point(rng, -1, 1))};
+        if (k % 4 == 0) {
+            const Vec3 to = s.p[rng() % s.p.size()] - r.origin;
+            if (length(to) > 0) r.direction = normalize(to);
+        } else if (k % 8 == 1) {
+            const Vec3 v = s.p[rng() % s.p.size()];
+            const int axis = static_cast<int>(rng() % 3);
+            r.origin = v;
+            r.origin[axis] = k % 16 == 1 ? -6.0f : 6.0f;
+            r.direction = Vec3{k % 3 == 0 ? -0.0f : 0.0f};
+            r.direction[axis] = k % 16 == 1 ? 1.0f : -1.0f;
+        }
+        rays.push_back(r);
+    }
+    return rays;
+}
+
+template <class B>
+void expect_same_answers_as_binary(int triangles, uint32_t seed) {
+    const Soup s = make_soup(triangles, seed);
+    const Bvh binary = Bvh::build(s.boxes);
+    const B wide(Bvh::build(s.boxes));
+    ASSERT_GT(wide.nodes().size(), 1u);
+    EXPECT_EQ(wide.order(), binary.order());
+    int hits = 0;
+    for (const Ray& r : random_rays(s, 20000, seed + 1)) {
+        const auto a = nearest(binary, s, r), b = nearest(wide, s, r);
+        ASSERT_EQ(a.second, b.second) << r.origin.x << " " << r.direction.x;
+        if (a.second >= 0) {
+            ASSERT_EQ(a.first, b.first);
+            ++hits;
+            ASSERT_EQ(any_hit(binary, s, r, a.first * 1.01f), any_hit(wide, s, r, a.first * 1.01f));
+            ASSERT_EQ(any_hit(binary, s, r, a.first * 0.99f), any_hit(wide, s, r, a.first * 0.99f));
+        }
+    }
+    EXPECT_GT(hits, 2000);
+}
+
+TEST(WideBvh, Bvh4GivesTheBinaryAnswers) { expect_same_answers_as_binary<Bvh4>(3000, 5); }
+TEST(WideBvh, Bvh8GivesTheBinaryAnswers) { expect_same_answers_as_binary<Bvh8>(3000, 6); }
+
+/// Every slot in exactly one leaf, each primitive inside its leaf's box, each child's box
+/// inside the box its parent holds for it; unused children empty.
+template <class B>
+void check_structure(const B& bvh, const std::vector<Bounds3>& boxes) {
+    using Node = typename B::Node;
+    constexpr int W = sizeof(Node::child) / sizeof(uint32_t);
+    std::vector<int> seen(bvh.order().size(), 0);
+    std::set<uint32_t> reached{0};
+    // (node, box the parent gives it)
+    std::vector<std::pair<uint32_t, Bounds3>> stack{{0u, Bounds3{Vec3{-1e30f}, Vec3{1e30f}}}};
+    while (!stack.empty()) {
+        const auto [i, outer] = stack.back();
+        stack.pop_back();
+        const Node& n = bvh.nodes()[i];
+        for (int j = 0; j < W; ++j) {
+            const Bounds3 box{{n.lo[0][j], n.lo[1][j], n.lo[2][j]},
+                              {n.hi[0][j], n.hi[1][j], n.hi[2][j]}};
+            if (n.child[j] == Node::kUnused) {
+                EXPECT_EQ(n.count[j], 0u);
+                EXPECT_TRUE(box.empty());
+                continue;
+            }
+            for (int a = 0; a < 3; ++a) {
+                EXPECT_GE(box.lo[a], outer.lo[a]);
+                EXPECT_LE(box.hi[a], outer.hi[a]);
+            }
+            if (n.count[j] > 0) {
+                for (uint32_t s = n.child[j]; s < n.child[j] + n.count[j]; ++s) {
+                    ++seen[s];
+                    const Bounds3& b = boxes[bvh.order()[s]];
+                    for (int a = 0; a < 3; ++a) {
+                        EXPECT_GE(b.lo[a], box.lo[a]);
+                        EXPECT_LE(b.hi[a], box.hi[a]);
+                    }
+                }
+            } else {
+                EXPECT_GT(n.child[j], i);  // depth first
+                EXPECT_TRUE(reached.insert(n.child[j]).second);
+                stack.push_back({n.child[j], box});
+            }
+        }
+    }
+    EXPECT_EQ(reached.size(), bvh.nodes().size());
+    for (size_t s = 0; s < seen.size(); ++s) ASSERT_EQ(seen[s], 1) << s;
+}
+
+TEST(WideBvh, EveryPrimitiveOnceInsideItsBoxes) {
+    const Soup s = make_soup(5000, 9);
+    check_structure(Bvh4(Bvh::build(s.boxes)), s.boxes);
+    check_structure(Bvh8(Bvh::build(s.boxes)), s.boxes);
+}
+
+TEST(WideBvh, EmptyAndSingleLeaf) {
+    EXPECT_TRUE(Bvh8(Bvh::build({})).empty());
+    const std::vector<Bounds3> same(100, Bounds3{{0, 0, 0}, {1, 1, 1}});
+    const Bvh8 one(Bvh::build(same));  // a leaf root: one wide node with one leaf child
+    ASSERT_EQ(one.nodes().size(), 1u);
+    EXPECT_EQ(one.nodes()[0].count[0], 100u);
+    int visited = 0;
+    uint64_t tests = 0;
+    float t_max = 10;
+    one.nearest({{0.5f, 0.5f, -1}, {0, 0, 1}}, 0.0f, t_max, tests,
+                [&](uint32_t, float&) { ++visited; });
+    EXPECT_EQ(visited, 100);
+    visited = 0;
+    one.nearest({{5, 5, -1}, {0, 0, 1}}, 0.0f, t_max, tests, [&](uint32_t, float&) { ++visited; });
+    EXPECT_EQ(visited, 0);
+}
+
+TEST(WideBvh, SameTreeForAnyThreadCount) {
+    std::vector<Bounds3> boxes;
+    Rng rng(3);
+    for (int i = 0; i < 300000; ++i) {
+        const Vec3 c = random_point(rng, -100, 100);
+        boxes.push_back({c, c + random_point(rng, 0, 0.5f)});
+    }
+    const auto build = [&](int threads) {
+        Bvh8 bvh;
+        tbb::task_arena arena(threads);
+        arena.execute([&] { bvh = Bvh8::build(boxes); });
+        return bvh;
+    };
+    const Bvh8 one = build(1), two = build(2), five = build(5);
+    ASSERT_EQ(one.nodes().size(), two.nodes().size());
+    ASSERT_EQ(one.nodes().size(), five.nodes().size());
+    const size_t bytes = one.nodes().size() * sizeof(Bvh8::Node);
+    EXPECT_EQ(std::memcmp(one.nodes().data(), two.nodes().data(), bytes), 0);
+    EXPECT_EQ(std::memcmp(one.nodes().data(), five.nodes().data(), bytes), 0);
+    EXPECT_EQ(one.order(), five.order());
+    EXPECT_EQ(one.memory_bytes(), one.nodes().capacity() * sizeof(Bvh8::Node) +
+                                      one.order().capacity() * sizeof(uint32_t));
+}
+
+}  // namespace
+}  // namespace luz
