@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/wide_bvh.h"
 #include "geometry/shape.h"
+#include "geometry/wide_bvh.h"
 #include "scene/scene_desc.h"
 
 namespace luz {
