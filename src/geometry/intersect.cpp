@@ -3,6 +3,7 @@
 // the watertight test of Woop, Benthin and Wald.
 #include "geometry/intersect.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -56,20 +57,60 @@ inline void quadratic_roots(double a, double b, double c, double disc, double& r
 
 // ---- sphere: |p|² = 1 -----------------------------------------------------------------------
 
-bool hit_sphere(const Ray& ro, Nearest& n) {
-    const D3 o = to_d3(ro.origin), d = to_d3(ro.direction);
-    const double a = dot3(d, d), b = dot3(o, d), c = dot3(o, o) - 1.0;
+/// The roots r0 ≤ r1 of |o + t·d|² = rr (a sphere of radius² rr about the origin); false if
+/// the line misses it.
+bool sphere_roots(const D3& o, const D3& d, double rr, double& r0, double& r1) {
+    const double a = dot3(d, d), b = dot3(o, d), c = dot3(o, o) - rr;
     if (!(a > 0)) return false;
-    // disc = b² − a·c computed as a·(1 − |o − (b/a)·d|²): no cancellation for distant origins
+    // disc = b² − a·c computed as a·(rr − |o − (b/a)·d|²): no cancellation for distant origins
     // (Haines et al., "Precision improvements for ray/sphere intersection", Ray Tracing Gems).
     const D3 l = along(o, d, -b / a);
-    const double disc = a * (1.0 - dot3(l, l));
+    const double disc = a * (rr - dot3(l, l));
     if (disc < 0) return false;
-    double r0, r1;
     quadratic_roots(a, b, c, disc, r0, r1);
     if (r0 > r1) std::swap(r0, r1);
+    return true;
+}
+
+bool hit_sphere(const Ray& ro, Nearest& n) {
+    double r0, r1;
+    if (!sphere_roots(to_d3(ro.origin), to_d3(ro.direction), 1.0, r0, r1)) return false;
     n.offer(r0, part_side) || n.offer(r1, part_side);
     return n.found;
+}
+
+/// A sphere in world space (Shape::world_form): the world ray, relative to the centre. Solved
+/// in float as sphere_roots() does in double, which takes over where float cannot be trusted:
+/// c = |o|² − ρ² near 0 (an origin on the surface: a spawned secondary or shadow ray), whose
+/// sign decides whether the near root lies ahead.
+bool world_sphere_roots(const Shape& s, const Ray& r, double& r0, double& r1) {
+    const Vec3 o = r.origin - s.centre, d = r.direction;
+    const float rr = s.radius * s.radius;
+    const float a = dot(d, d), b = dot(o, d), oo = dot(o, o), c = oo - rr;
+    // |error of c| ≤ ~3 ulp of max(|o|², ρ²): 1/16 of 2^-17 of it keeps c's sign and the near
+    // root's absolute error at the float rounding of the ray itself.
+    if (std::fabs(c) < 0x1p-17f * std::max(oo, rr) || !(a > 0)) {
+        const D3 od{double(r.origin.x) - s.centre.x, double(r.origin.y) - s.centre.y,
+                    double(r.origin.z) - s.centre.z};
+        const double rho = s.radius;
+        return sphere_roots(od, to_d3(d), rho * rho, r0, r1);
+    }
+    const float inv_a = 1.0f / a;
+    const Vec3 l = o - d * (b * inv_a);  // Haines et al.: disc without cancellation
+    const float disc = a * (rr - dot(l, l));
+    if (disc < 0) return false;
+    const float q = -(b + std::copysign(std::sqrt(disc), b));
+    const float f0 = c / q, f1 = q * inv_a;
+    r0 = std::min(f0, f1);
+    r1 = std::max(f0, f1);
+    return true;
+}
+
+/// A plane in world space (Shape::world_form): n·(o + t·d) = offset.
+double world_plane_root(const Shape& s, const Ray& r) {
+    const D3 n = to_d3(s.normal);
+    const double nd = dot3(n, to_d3(r.direction));
+    return (double(s.offset) - dot3(n, to_d3(r.origin))) / nd;  // ±inf or NaN if parallel
 }
 
 // ---- box: slabs -----------------------------------------------------------------------------
@@ -362,9 +403,21 @@ bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit)
     if (s.type == ShapeType::mesh) {
         return s.mesh && intersect_mesh(*s.mesh, prepare_watertight(r), t_min, t_max, hit);
     }
-    const Ray ro = s.transform.to_object(r);
     Nearest n{t_min, t_max};
     hit.u = hit.v = 0;
+    if (s.world_form) {  // sphere under a similarity, or plane: no change of space
+        if (s.type == ShapeType::sphere) {
+            double r0, r1;
+            if (!world_sphere_roots(s, r, r0, r1)) return false;
+            if (!n.offer(r0, part_side) && !n.offer(r1, part_side)) return false;
+        } else if (!n.offer(world_plane_root(s, r), part_side)) {
+            return false;
+        }
+        hit.t = n.best;
+        hit.part = n.part;
+        return true;
+    }
+    const Ray ro = s.transform.to_object(r);
     switch (s.type) {
         case ShapeType::sphere:
             if (!hit_sphere(ro, n)) return false;
@@ -406,11 +459,46 @@ bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit)
     return true;
 }
 
+uint32_t count_crossings(const Shape& s, const Ray& r, float t_min, float t_max, bool first_only,
+                         uint64_t& tests) {
+    const auto inside = [&](double t) {
+        const float tf = static_cast<float>(t);
+        return tf > t_min && tf < t_max;
+    };
+    if (s.world_form) {
+        ++tests;
+        if (s.type == ShapeType::plane) return inside(world_plane_root(s, r)) ? 1 : 0;
+        double r0, r1;
+        if (!world_sphere_roots(s, r, r0, r1)) return 0;
+        const uint32_t n = (inside(r0) ? 1 : 0) + (inside(r1) ? 1 : 0);
+        return first_only ? std::min(n, 1u) : n;
+    }
+    Hit hit;
+    float t = t_min;
+    uint32_t n = 0;
+    for (int k = 0; k < 64; ++k) {
+        ++tests;
+        if (!intersect(s, r, t, t_max, hit)) break;
+        ++n;
+        if (first_only) break;
+        // Step past this crossing (relative step: the same root is not found twice).
+        t = hit.t + 1e-4f * std::max(1.0f, hit.t);
+    }
+    return n;
+}
+
 SurfacePoint surface_at(const Shape& s, const Ray& r, const Hit& hit) {
     if (s.type == ShapeType::mesh) {
         // world space; N interpolated (smooth) on the face normal's side, Ng the face normal
         const size_t t = static_cast<size_t>(hit.part);
         return {r.at(hit.t), s.mesh->shading_normal(t, hit.u, hit.v), s.mesh->face_normal(t)};
+    }
+    if (s.world_form) {
+        SurfacePoint sp;
+        sp.P = r.at(hit.t);
+        sp.N = s.type == ShapeType::plane ? s.normal : unit_or(sp.P - s.centre, {0, 0, 1});
+        sp.Ng = sp.N;
+        return sp;
     }
     const Ray ro = s.transform.to_object(r);
     const Vec3 p = ro.at(hit.t);

@@ -2,6 +2,8 @@
 // shape in its canonical object space (shape.h), and the surface data at that hit.
 #pragma once
 
+#include <cstdint>
+
 #include "geometry/shape.h"
 #include "math/ray.h"
 #include "math/vec3.h"
@@ -32,6 +34,13 @@ struct Hit {
 /// in both spaces. Valid for rays starting inside the shape (refraction). A mesh tests every
 /// triangle (intersect_mesh); the scene queries use the BVH instead.
 bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit);
+
+/// How many times r crosses s in (t_min, t_max) (a closed shape counts twice), or at most 1
+/// with `first_only` (enough to know an opaque shape blocks); `tests` counts the ray–shape
+/// tests made. Planes and spheres in world form count their roots directly; other shapes
+/// repeat intersect() past each crossing (up to 64).
+uint32_t count_crossings(const Shape& s, const Ray& r, float t_min, float t_max, bool first_only,
+                         uint64_t& tests);
 
 /// Surface data at a hit: world position, unit outward shading normal (object normal by the
 /// inverse transpose, normalised), unit outward geometric normal. For triangles both are the

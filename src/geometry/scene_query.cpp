@@ -169,18 +169,10 @@ bool cross_shape(const Scene& scene, uint32_t i, const Ray& r, float t_min, floa
                  Crossings& crossings, IntersectCounters& counters) {
     const Shape& s = scene.shapes[i];
     const float transparency = scene.desc.materials[s.material].transparency;
-    Hit hit;
-    float t = t_min;
-    uint32_t n = 0;
-    for (int k = 0; k < 64; ++k) {
-        ++counters.primitive;
-        if (!intersect(s, r, t, t_max, hit)) break;
-        if (transparency <= 0) return false;
-        ++n;
-        // Step past this crossing (relative step: the same root is not found twice).
-        t = hit.t + 1e-4f * std::max(1.0f, hit.t);
-    }
-    if (n > 0) crossings.add(s.material, n, transparency);
+    const uint32_t n = count_crossings(s, r, t_min, t_max, transparency <= 0, counters.primitive);
+    if (n == 0) return true;
+    if (transparency <= 0) return false;
+    crossings.add(s.material, n, transparency);
     return true;
 }
 

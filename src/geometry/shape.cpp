@@ -33,6 +33,39 @@ Bounds3 pad(Bounds3 b) {
     return {b.lo - eps, b.hi + eps};
 }
 
+/// Whether the linear part of `a` is a rotation (or reflection) times a uniform scale: its
+/// columns orthogonal and of one length, to a few float ulps.
+bool is_similarity(const Affine& a) {
+    const Vec3 c[3] = {column(a, 0), column(a, 1), column(a, 2)};
+    const float l2 = dot(c[0], c[0]);
+    const float tol = 16.0f * std::numeric_limits<float>::epsilon() * l2;
+    for (int k = 0; k < 3; ++k) {
+        if (std::fabs(dot(c[k], c[k]) - l2) > tol) return false;
+        if (std::fabs(dot(c[k], c[(k + 1) % 3])) > tol) return false;
+    }
+    return l2 > 0;
+}
+
+/// Fills the shape's world-space form (shape.h) where it exists.
+void set_world_form(Shape& s) {
+    const Affine& M = s.transform.world_from_object;
+    const Vec3 origin{M.m[0][3], M.m[1][3], M.m[2][3]};
+    if (s.type == ShapeType::sphere && is_similarity(M)) {
+        s.world_form = true;
+        s.centre = origin;
+        s.radius = length(column(M, 0));
+    } else if (s.type == ShapeType::plane) {
+        // the object normal +z by the inverse transpose, as surface_at() gives it
+        const Vec3 n = s.transform.normal({0, 0, 1});
+        const float l = length(n);
+        if (l > 0 && std::isfinite(l)) {
+            s.world_form = true;
+            s.normal = n / l;
+            s.offset = dot(s.normal, origin);
+        }
+    }
+}
+
 }  // namespace
 
 Shape make_shape(const ObjectDesc& o, int object_index) {
@@ -84,6 +117,7 @@ Shape make_shape(const ObjectDesc& o, int object_index) {
             return s;  // world space already: identity transform
     }
     s.transform = Transform::from(o.transform * placement);
+    set_world_form(s);
     return s;
 }
 

@@ -31,6 +31,14 @@ struct Shape {
     Vec3 lo, hi;                       ///< box corners in object space
     Vec3 vertices[3];                  ///< triangle vertices in object space
     std::shared_ptr<const Mesh> mesh;  ///< mesh: its triangles (shared by copies of the shape)
+
+    /// World-space form, for the ray tracer's fast path (intersect.cpp): set for every plane
+    /// (n·p = offset, n the unit outward normal) and for a sphere whose transform is a
+    /// similarity (|p − centre| = radius); other shapes are hit in object space.
+    bool world_form = false;
+    Vec3 centre, normal;  ///< sphere: centre; plane: unit normal n
+    float radius = 0;     ///< sphere: radius
+    float offset = 0;     ///< plane: n·p for its points p
 };
 
 /// The runtime shape of an object description (validated: non-degenerate).

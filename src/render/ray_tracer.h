@@ -25,7 +25,7 @@ struct TraceCounters {
 
 /// One primary sample in this many is timed whole and in its scene queries, to measure the
 /// share of time spent in intersection (RenderStats::intersect_sampled_seconds).
-inline constexpr uint64_t kTimedSampleEvery = 16;
+inline constexpr uint64_t kTimedSampleEvery = 64;
 
 /// Offset of secondary and shadow ray origins along the geometric normal (SPEC §1.1: ≤ 1e-4).
 inline constexpr float kRayEpsilon = 1e-4f;

@@ -3,7 +3,9 @@
 // terms.
 #pragma once
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <span>
 
 #include "math/vec3.h"
@@ -45,6 +47,17 @@ struct ShadeTerms {
     std::span<LightTerm> light;  ///< one per light, filled when at least lights.size() long
     bool flipped = false;        ///< N was flipped towards the viewer (two-sided normals)
 };
+
+/// cosα^n for cosα in [0, 1] and n > 0, as std::pow gives it, except that a power below
+/// 2^-150 (which rounds to 0 in float, after std::pow's slow underflow path) is 0 at once,
+/// and so is 0^n.
+inline float phong_power(float cos_alpha, float n) {
+    if (!(cos_alpha > 0)) return 0.0f;
+    // cosα < 2^e with e = (biased exponent) − 126 (also for subnormals, whose field is 0)
+    const int e = static_cast<int>(std::bit_cast<uint32_t>(cos_alpha) >> 23) - 126;
+    if (n * static_cast<float>(e) < -150.0f) return 0.0f;
+    return std::pow(cos_alpha, n);
+}
 
 /// Evaluates the model at p (SPEC §1). `visibility(j, P, L_j, d_j)` returns vis_j and is only
 /// asked for lights in front of the surface (cosθ_j > 0). Writes the terms when `terms` is set.
@@ -88,9 +101,10 @@ inline Rgb shade(const ShadingPoint& p, const Lighting& lighting, Visibility&& v
                     t.cos_alpha = R_dot_S > 0 ? R_dot_S : 0.0f;
                     const Rgb Il_att = light.intensity * (t.visibility / (d + lighting.K));
                     t.diffuse = Il_att * c.kd * t.cos_theta;
-                    // cosα^n, with 0^n = 0 (n > 0) taken without calling pow.
-                    const float cos_alpha_n = t.cos_alpha > 0 ? std::pow(t.cos_alpha, m.n) : 0.0f;
-                    t.specular = Il_att * m.ks * cos_alpha_n;
+                    // Ks·cosα^n (a surface without Ks needs no power)
+                    if (max_component(m.ks) > 0) {
+                        t.specular = Il_att * m.ks * phong_power(t.cos_alpha, m.n);
+                    }
                 }
                 I += t.diffuse + t.specular;
             }

@@ -162,3 +162,20 @@ TEST(Shade, CheckerReplacesKaKdInOddCells) {
 
 }  // namespace
 }  // namespace luz
+
+// phong_power() is std::pow(cosα, n) bit for bit, including where the power underflows to 0
+// (taken without pow) and 0^n = 0; exponents as the presets and users set them.
+TEST(Shade, PhongPowerIsPowIncludingUnderflow) {
+    int underflows = 0;
+    for (float n : {1.0f, 2.5f, 10.0f, 50.0f, 200.0f, 500.0f, 1000.0f, 10000.0f}) {
+        for (float c = 1.0f; c > 1e-30f; c *= 0.937f) {
+            const float p = std::pow(c, n);
+            EXPECT_EQ(luz::phong_power(c, n), p) << "cos " << c << " n " << n;
+            underflows += p == 0.0f;
+        }
+        EXPECT_EQ(luz::phong_power(0.0f, n), 0.0f);
+        const float tiny = std::nextafter(0.0f, 1.0f);
+        EXPECT_EQ(luz::phong_power(tiny, n), std::pow(tiny, n));
+    }
+    EXPECT_GT(underflows, 100);  // the sweep does reach the underflow region
+}
