@@ -89,15 +89,12 @@ bool format_from_path(const std::string& path, ImageFormat& out) {
     return true;
 }
 
-uint8_t encode_8bit(float I, Encoding e) {
+uint8_t encode_8bit_srgb(float I) {
     // clamp(I, 0, 1); NaN encodes as 0
     if (!(I > 0.0f)) return 0;
     if (I >= 1.0f) return 255;
-    double v = I;
-    if (e == Encoding::srgb) {  // the sRGB transfer curve (IEC 61966-2-1)
-        v = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
-    }
-    // round(255·v): the product is exact in double, and v ≥ 0 so +0.5 rounds half up
+    // the sRGB transfer curve (IEC 61966-2-1)
+    const double v = I <= 0.0031308 ? 12.92 * I : 1.055 * std::pow(double(I), 1.0 / 2.4) - 0.055;
     return static_cast<uint8_t>(255.0 * v + 0.5);
 }
 

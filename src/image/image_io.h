@@ -22,8 +22,18 @@ struct ImageError : std::runtime_error {
 /// The format for a file name by its extension (case-insensitive); false if unknown.
 bool format_from_path(const std::string& path, ImageFormat& out);
 
-/// 8-bit value of a linear intensity: linear round(255·clamp(I,0,1)), or the sRGB curve.
-uint8_t encode_8bit(float I, Encoding e);
+/// 8-bit sRGB value of a linear intensity: round(255·srgb(clamp(I,0,1))); NaN gives 0.
+uint8_t encode_8bit_srgb(float I);
+
+/// 8-bit value of a linear intensity: linear round(255·clamp(I,0,1)), or the sRGB curve;
+/// NaN gives 0. Inline: it runs for every channel of every pixel written.
+inline uint8_t encode_8bit(float I, Encoding e) {
+    if (e == Encoding::srgb) return encode_8bit_srgb(I);
+    if (!(I > 0.0f)) return 0;
+    if (I >= 1.0f) return 255;
+    // round(255·I): the product is exact in double, and I > 0 so +0.5 rounds half up
+    return static_cast<uint8_t>(255.0 * double(I) + 0.5);
+}
 
 /// The bytes of `img` in the format its extension names, as write_image would write them (for
 /// files committed together with others, see atomic_file.h); throws ImageError naming `path`.

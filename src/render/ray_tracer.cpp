@@ -123,9 +123,8 @@ Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& 
     if (full_) {
         auto visibility = [&](size_t, const Vec3& P, const Vec3& L, float d) {
             ++counters.shadow;
-            const Ray shadow = spawn_ray(P, sp.Ng, L);
-            return transmittance(scene_, shadow, 0.0f, length(P + L * d - shadow.origin),
-                                 counters.tests);
+            // The segment P → light j moved by the spawn offset (≤ 1e-4): direction L, length d.
+            return transmittance(scene_, spawn_ray(P, sp.Ng, L), 0.0f, d, counters.tests);
         };
         c = shade(p, lighting_, visibility, terms_out);
     } else {
