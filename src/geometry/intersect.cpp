@@ -79,40 +79,6 @@ bool hit_sphere(const Ray& ro, Nearest& n) {
     return n.found;
 }
 
-/// A sphere in world space (Shape::world_form): the world ray, relative to the centre. Solved
-/// in float as sphere_roots() does in double, which takes over where float cannot be trusted:
-/// c = |o|² − ρ² near 0 (an origin on the surface: a spawned secondary or shadow ray), whose
-/// sign decides whether the near root lies ahead.
-bool world_sphere_roots(const Shape& s, const Ray& r, double& r0, double& r1) {
-    const Vec3 o = r.origin - s.centre, d = r.direction;
-    const float rr = s.radius * s.radius;
-    const float a = dot(d, d), b = dot(o, d), oo = dot(o, o), c = oo - rr;
-    // |error of c| ≤ ~3 ulp of max(|o|², ρ²): 1/16 of 2^-17 of it keeps c's sign and the near
-    // root's absolute error at the float rounding of the ray itself.
-    if (std::fabs(c) < 0x1p-17f * std::max(oo, rr) || !(a > 0)) {
-        const D3 od{double(r.origin.x) - s.centre.x, double(r.origin.y) - s.centre.y,
-                    double(r.origin.z) - s.centre.z};
-        const double rho = s.radius;
-        return sphere_roots(od, to_d3(d), rho * rho, r0, r1);
-    }
-    const float inv_a = 1.0f / a;
-    const Vec3 l = o - d * (b * inv_a);  // Haines et al.: disc without cancellation
-    const float disc = a * (rr - dot(l, l));
-    if (disc < 0) return false;
-    const float q = -(b + std::copysign(std::sqrt(disc), b));
-    const float f0 = c / q, f1 = q * inv_a;
-    r0 = std::min(f0, f1);
-    r1 = std::max(f0, f1);
-    return true;
-}
-
-/// A plane in world space (Shape::world_form): n·(o + t·d) = offset.
-double world_plane_root(const Shape& s, const Ray& r) {
-    const D3 n = to_d3(s.normal);
-    const double nd = dot3(n, to_d3(r.direction));
-    return (double(s.offset) - dot3(n, to_d3(r.origin))) / nd;  // ±inf or NaN if parallel
-}
-
 // ---- box: slabs -----------------------------------------------------------------------------
 
 bool hit_box(const Shape& s, const Ray& ro, Nearest& n) {
@@ -399,24 +365,25 @@ bool intersect_mesh(const Mesh& mesh, const WatertightRay& w, float t_min, float
     return found;
 }
 
-bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit) {
+namespace detail {
+
+bool world_sphere_roots_double(const Shape& s, const Ray& r, float& t0, float& t1) {
+    const D3 o{double(r.origin.x) - s.centre.x, double(r.origin.y) - s.centre.y,
+               double(r.origin.z) - s.centre.z};
+    const double rho = s.radius;
+    double r0, r1;
+    if (!sphere_roots(o, to_d3(r.direction), rho * rho, r0, r1)) return false;
+    t0 = static_cast<float>(r0);
+    t1 = static_cast<float>(r1);
+    return true;
+}
+
+bool intersect_object_space(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit) {
     if (s.type == ShapeType::mesh) {
         return s.mesh && intersect_mesh(*s.mesh, prepare_watertight(r), t_min, t_max, hit);
     }
     Nearest n{t_min, t_max};
     hit.u = hit.v = 0;
-    if (s.world_form) {  // sphere under a similarity, or plane: no change of space
-        if (s.type == ShapeType::sphere) {
-            double r0, r1;
-            if (!world_sphere_roots(s, r, r0, r1)) return false;
-            if (!n.offer(r0, part_side) && !n.offer(r1, part_side)) return false;
-        } else if (!n.offer(world_plane_root(s, r), part_side)) {
-            return false;
-        }
-        hit.t = n.best;
-        hit.part = n.part;
-        return true;
-    }
     const Ray ro = s.transform.to_object(r);
     switch (s.type) {
         case ShapeType::sphere:
@@ -459,26 +426,14 @@ bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit)
     return true;
 }
 
-uint32_t count_crossings(const Shape& s, const Ray& r, float t_min, float t_max, bool first_only,
-                         uint64_t& tests) {
-    const auto inside = [&](double t) {
-        const float tf = static_cast<float>(t);
-        return tf > t_min && tf < t_max;
-    };
-    if (s.world_form) {
-        ++tests;
-        if (s.type == ShapeType::plane) return inside(world_plane_root(s, r)) ? 1 : 0;
-        double r0, r1;
-        if (!world_sphere_roots(s, r, r0, r1)) return 0;
-        const uint32_t n = (inside(r0) ? 1 : 0) + (inside(r1) ? 1 : 0);
-        return first_only ? std::min(n, 1u) : n;
-    }
+uint32_t count_crossings_object_space(const Shape& s, const Ray& r, float t_min, float t_max,
+                                      bool first_only, uint64_t& tests) {
     Hit hit;
     float t = t_min;
     uint32_t n = 0;
     for (int k = 0; k < 64; ++k) {
         ++tests;
-        if (!intersect(s, r, t, t_max, hit)) break;
+        if (!intersect_object_space(s, r, t, t_max, hit)) break;
         ++n;
         if (first_only) break;
         // Step past this crossing (relative step: the same root is not found twice).
@@ -486,6 +441,8 @@ uint32_t count_crossings(const Shape& s, const Ray& r, float t_min, float t_max,
     }
     return n;
 }
+
+}  // namespace detail
 
 SurfacePoint surface_at(const Shape& s, const Ray& r, const Hit& hit) {
     if (s.type == ShapeType::mesh) {

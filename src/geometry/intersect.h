@@ -2,7 +2,10 @@
 // shape in its canonical object space (shape.h), and the surface data at that hit.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "geometry/shape.h"
 #include "math/ray.h"
@@ -29,18 +32,87 @@ struct Hit {
     int part = part_side;  ///< HitPart, the box face, or a mesh's triangle index
 };
 
-/// Nearest hit of world ray r with shape s in the open interval (t_min, t_max). The ray is
-/// moved into object space (transform.to_object, direction not normalised), so t is the same
-/// in both spaces. Valid for rays starting inside the shape (refraction). A mesh tests every
+namespace detail {
+bool world_sphere_roots_double(const Shape& s, const Ray& r, float& t0, float& t1);
+bool intersect_object_space(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit);
+uint32_t count_crossings_object_space(const Shape& s, const Ray& r, float t_min, float t_max,
+                                      bool first_only, uint64_t& tests);
+}  // namespace detail
+
+/// The roots t0 ≤ t1 of world ray r with sphere s in world form (Shape::world_form), false if
+/// it misses. Solved in float (the roots c/q and q/a of a·t² + 2b·t + c with q = −(b ± √disc),
+/// disc without cancellation as Haines et al., Ray Tracing Gems ch. 7), or in double where
+/// float cannot be trusted: c = |o|² − ρ² near 0 (an origin on the surface, as spawned
+/// secondary and shadow rays have), whose sign decides whether the near root lies ahead.
+inline bool world_sphere_roots(const Shape& s, const Ray& r, float& t0, float& t1) {
+    const Vec3 o = r.origin - s.centre, d = r.direction;
+    const float rr = s.radius * s.radius;
+    const float a = dot(d, d), b = dot(o, d), oo = dot(o, o), c = oo - rr;
+    // |error of c| ≤ ~3 ulp of max(|o|², ρ²); beyond 2^-17 of it, c's sign is sure and the
+    // near root's error stays at the float rounding of the ray itself.
+    if (std::fabs(c) < 0x1p-17f * std::max(oo, rr) || !(a > 0)) {
+        return detail::world_sphere_roots_double(s, r, t0, t1);
+    }
+    const float inv_a = 1.0f / a;
+    const Vec3 l = o - d * (b * inv_a);
+    const float disc = a * (rr - dot(l, l));
+    if (disc < 0) return false;
+    const float q = -(b + std::copysign(std::sqrt(disc), b));
+    const float f0 = c / q, f1 = q * inv_a;
+    t0 = std::min(f0, f1);
+    t1 = std::max(f0, f1);
+    return true;
+}
+
+/// The root of world ray r with plane s in world form: n·(o + t·d) = offset (±inf or NaN if
+/// the ray is parallel). n·o in double: no cancellation for origins on the plane.
+inline float world_plane_root(const Shape& s, const Ray& r) {
+    const double n_o = double(s.normal.x) * r.origin.x + double(s.normal.y) * r.origin.y +
+                       double(s.normal.z) * r.origin.z;
+    return static_cast<float>(double(s.offset) - n_o) / dot(s.normal, r.direction);
+}
+
+/// Nearest hit of world ray r with shape s in the open interval (t_min, t_max). Spheres under a
+/// similarity and planes are hit in world space (Shape::world_form); the other shapes in
+/// object space (transform.to_object, direction not normalised), so t is the same in both
+/// spaces. Valid for rays starting inside the shape (refraction). A mesh tests every
 /// triangle (intersect_mesh); the scene queries use the BVH instead.
-bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit);
+inline bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit) {
+    if (!s.world_form) return detail::intersect_object_space(s, r, t_min, t_max, hit);
+    float t0, t1;
+    if (s.type == ShapeType::sphere) {
+        if (!world_sphere_roots(s, r, t0, t1)) return false;
+    } else {
+        t0 = t1 = world_plane_root(s, r);
+    }
+    const float t = t0 > t_min ? t0 : t1;  // NaN fails below
+    if (!(t > t_min && t < t_max)) return false;
+    hit.t = t;
+    hit.u = hit.v = 0;
+    hit.part = part_side;
+    return true;
+}
 
 /// How many times r crosses s in (t_min, t_max) (a closed shape counts twice), or at most 1
 /// with `first_only` (enough to know an opaque shape blocks); `tests` counts the ray–shape
 /// tests made. Planes and spheres in world form count their roots directly; other shapes
 /// repeat intersect() past each crossing (up to 64).
-uint32_t count_crossings(const Shape& s, const Ray& r, float t_min, float t_max, bool first_only,
-                         uint64_t& tests);
+inline uint32_t count_crossings(const Shape& s, const Ray& r, float t_min, float t_max,
+                                bool first_only, uint64_t& tests) {
+    if (!s.world_form) {
+        return detail::count_crossings_object_space(s, r, t_min, t_max, first_only, tests);
+    }
+    ++tests;
+    float t0, t1;
+    if (s.type == ShapeType::sphere) {
+        if (!world_sphere_roots(s, r, t0, t1)) return 0;
+    } else {
+        t0 = world_plane_root(s, r);
+        t1 = std::numeric_limits<float>::quiet_NaN();  // one root only
+    }
+    const uint32_t n = (t0 > t_min && t0 < t_max ? 1 : 0) + (t1 > t_min && t1 < t_max ? 1 : 0);
+    return first_only && n > 1 ? 1 : n;
+}
 
 /// Surface data at a hit: world position, unit outward shading normal (object normal by the
 /// inverse transpose, normalised), unit outward geometric normal. For triangles both are the

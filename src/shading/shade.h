@@ -49,13 +49,16 @@ struct ShadeTerms {
 };
 
 /// cosα^n for cosα in [0, 1] and n > 0, as std::pow gives it, except that a power below
-/// 2^-150 (which rounds to 0 in float, after std::pow's slow underflow path) is 0 at once,
+/// 2^-151 (which rounds to 0 in float, after std::pow's slow underflow path) is 0 at once,
 /// and so is 0^n.
 inline float phong_power(float cos_alpha, float n) {
     if (!(cos_alpha > 0)) return 0.0f;
-    // cosα < 2^e with e = (biased exponent) − 126 (also for subnormals, whose field is 0)
-    const int e = static_cast<int>(std::bit_cast<uint32_t>(cos_alpha) >> 23) - 126;
-    if (n * static_cast<float>(e) < -150.0f) return 0.0f;
+    // An upper bound of log2 cosα from its bits: cosα = (1 + x)·2^E with x in [0, 1) and
+    // log2(1 + x) ≤ x/ln 2 (subnormals: E = −127 overstates them, still a bound).
+    const uint32_t bits = std::bit_cast<uint32_t>(cos_alpha);
+    const float E = static_cast<float>(static_cast<int>(bits >> 23) - 127);
+    const float x = static_cast<float>(bits & 0x7FFFFFu) * 0x1p-23f;
+    if (n * (E + 1.4426951f * x) < -151.0f) return 0.0f;  // 2^-151: 0 after rounding
     return std::pow(cos_alpha, n);
 }
 
