@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages luz needs to build and test, only those missing.
 set -euo pipefail
 packages=(cmake ninja-build g++ pkg-config nlohmann-json3-dev libcli11-dev libpng-dev
-          libopenexr-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev
+          zlib1g-dev libopenexr-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev
           libtinyobjloader-dev libembree-dev  # Embree 3: bench/bvh_vs_embree only
           libsdl2-dev libimgui-dev libgl-dev xvfb xauth)  # the viewer (luz view) and its tests
 missing=()
