@@ -5,6 +5,7 @@
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -57,21 +58,50 @@ struct alignas(16) Ref {
 };
 
 constexpr int kMaxBins = 64;
-constexpr int kMedianDepth = 48;       // deeper nodes split at the median: depth stays < 48 + 32
-constexpr size_t kSerialBelow = 4096;  // smaller subtrees are built by one task
-constexpr size_t kChunk = 16384;       // refs per chunk of parallel binning and partitioning
-constexpr size_t kSweepBelow = 17;     // smaller nodes: exact SAH over sorted centroids
+constexpr int kMedianDepth = 48;        // deeper nodes split at the median: depth stays < 48 + 32
+constexpr size_t kSerialBelow = 1024;   // smaller subtrees are built by one task (2+ threads)
+constexpr size_t kSerialBelow1 = 4096;  // the same on one thread (fewer tasks, less copying)
+constexpr size_t kChunk = 16384;        // refs per chunk of parallel binning and partitioning
+constexpr size_t kSweepBelow = 17;      // smaller nodes: exact SAH over sorted centroids
 
 /// The SAH's measure of a box: its surface area (halved), or for a flat-less box (a segment or
 /// a point) its length, so that costs stay comparable where every area is zero.
 struct Measure {
     bool by_area;
-    float operator()(const Box& b) const {
-        if (b.empty()) return 0.0f;
+    float operator()(const Box& b) const { return b.empty() ? 0.0f : of_nonempty(b); }
+    /// The measure of a box known to hold something (no emptiness test).
+    float of_nonempty(const Box& b) const {
         const V4 d = b.hi - b.lo;
         return by_area ? d[0] * d[1] + d[1] * d[2] + d[2] * d[0] : d[0] + d[1] + d[2];
     }
 };
+
+// Eight floats or ints in one (AVX) register, or two SSE ones: the sweep's ranking.
+typedef float V8 __attribute__((vector_size(32)));
+typedef int32_t I8 __attribute__((vector_size(32)));
+
+constexpr int kRankVectors = (kSweepBelow - 1 + 7) / 8;  // V8s of keys in the sweep's ranking
+
+/// Sorts indices 0 … n−1 (n < kSweepBelow) by key, stably (equal keys keep their order):
+/// each index's rank is the number of keys before it, all ranks counted at once on SIMD
+/// lanes. `key` holds 8·kRankVectors floats, those past n +∞. False (and `o` unspecified) if
+/// a key is NaN.
+bool rank_sort(const float* key, int n, int* o) {
+    V8 k[kRankVectors];
+    std::memcpy(k, key, sizeof k);
+    I8 rank[kRankVectors] = {};
+    for (int j = 0; j < n; ++j) {
+        const float kj = key[j];
+        if (kj != kj) return false;
+        I8 lane{0, 1, 2, 3, 4, 5, 6, 7};
+        for (int h = 0; h < kRankVectors; ++h, lane += 8) {
+            // key j comes before lane i if smaller, or equal with j < i (lanes −1 where true)
+            rank[h] -= (kj < k[h]) | ((kj == k[h]) & (j < lane));
+        }
+    }
+    for (int i = 0; i < n; ++i) o[rank[i >> 3][i & 7]] = i;
+    return true;
+}
 
 /// One bin of one axis: the bounds of the boxes whose centroids fall in it, and their number.
 struct Bin {
@@ -122,7 +152,11 @@ BvhNode make_node(const Box& box) {
 class Builder {
   public:
     Builder(std::vector<Ref>& refs, const BvhOptions& options)
-        : refs_(refs), options_(options), bins_(std::clamp(options.bins, 2, kMaxBins)) {}
+        : refs_(refs),
+          options_(options),
+          bins_(std::clamp(options.bins, 2, kMaxBins)),
+          serial_below_(tbb::this_task_arena::max_concurrency() > 1 ? kSerialBelow
+                                                                    : kSerialBelow1) {}
 
     /// The bounds of the boxes and of the centroids of refs [begin, end).
     void bounds_of(size_t begin, size_t end, Box& box, Box& cbox) const {
@@ -140,7 +174,7 @@ class Builder {
                                         int depth) {
         auto sub = std::make_unique<Subtree>();
         const auto scratch = std::make_unique<Bins>();
-        if (end - begin < kSerialBelow) {
+        if (end - begin < serial_below_) {
             sub->nodes.reserve(2 * (end - begin));
             build_serial(sub->nodes, begin, end, box, cbox, depth, *scratch);
             sub->size = sub->nodes.size();
@@ -272,7 +306,7 @@ class Builder {
             for (int k = bins_ - 1; k > 0; --k) {
                 acc.expand(bins.bin[a][k].box);
                 c += bins.bin[a][k].n;
-                right_measure[k - 1] = measure(acc);
+                right_measure[k - 1] = measure.of_nonempty(acc);  // used only if c > 0
                 right_count[k - 1] = c;
             }
             acc = Box{};
@@ -281,7 +315,7 @@ class Builder {
                 acc.expand(bins.bin[a][k].box);
                 c += bins.bin[a][k].n;
                 if (c == 0 || right_count[k] == 0) continue;
-                const float sum = measure(acc) * c + right_measure[k] * right_count[k];
+                const float sum = measure.of_nonempty(acc) * c + right_measure[k] * right_count[k];
                 if (sum < best_sum) {
                     best_sum = sum;
                     best_axis = a;
@@ -393,42 +427,65 @@ class Builder {
     }
 
     /// split() for a small node: the exact SAH over every split of the refs sorted by centroid
-    /// on each axis (cheaper here than clearing and sweeping the bins, and no worse).
+    /// on each axis (cheaper here than clearing and sweeping the bins, and no worse). The three
+    /// axes are swept side by side (independent chains of box unions).
     size_t sweep(size_t begin, size_t end, const Box& box, V4 ce, Box* child) {
         const int n = static_cast<int>(end - begin);
+        constexpr int kKeys = 8 * kRankVectors;
         V4 c[kSweepBelow];
-        for (int i = 0; i < n; ++i) c[i] = refs_[begin + i].centroid();
+        float key[3][kKeys];
+        for (int i = 0; i < kKeys; ++i) {
+            if (i < n) c[i] = refs_[begin + i].centroid();
+            for (int a = 0; a < 3; ++a) key[a][i] = i < n ? c[i][a] : kInf;
+        }
         const V4 e = box.hi - box.lo;
         const Measure measure{e[0] * e[1] + e[1] * e[2] + e[2] * e[0] > 0};
-        float best_sum = std::numeric_limits<float>::infinity();
-        int best_axis = -1, best_k = 0;
+        // refs by centroid on each axis (stable: equal centroids keep their order)
         int order[3][kSweepBelow];
         for (int a = 0; a < 3; ++a) {
-            if (!(ce[a] > 0)) continue;
-            // refs by centroid on axis a (insertion sort, stable: equal centroids keep order)
             int* o = order[a];
-            for (int i = 0; i < n; ++i) {
-                int j = i;
-                for (; j > 0 && c[o[j - 1]][a] > c[i][a]; --j) o[j] = o[j - 1];
-                o[j] = i;
-            }
-            // right_measure[k]: the refs after position k
-            float right_measure[kSweepBelow];
-            Box acc;
-            for (int k = n - 1; k > 0; --k) {
-                acc.expand(Box{refs_[begin + o[k]].lo, refs_[begin + o[k]].hi});
-                right_measure[k - 1] = measure(acc);
-            }
-            acc = Box{};
-            for (int k = 0; k < n - 1; ++k) {
-                acc.expand(Box{refs_[begin + o[k]].lo, refs_[begin + o[k]].hi});
-                const float sum = measure(acc) * static_cast<float>(k + 1) +
-                                  right_measure[k] * static_cast<float>(n - k - 1);
-                if (sum < best_sum) {
-                    best_sum = sum;
-                    best_axis = a;
-                    best_k = k;
+            if (!rank_sort(key[a], n, o)) {  // a NaN centroid: insertion sort, as ever
+                for (int i = 0; i < n; ++i) {
+                    int j = i;
+                    for (; j > 0 && c[o[j - 1]][a] > c[i][a]; --j) o[j] = o[j - 1];
+                    o[j] = i;
                 }
+            }
+        }
+        // right_measure[a][k]: the refs after position k on axis a
+        float right_measure[3][kSweepBelow];
+        Box acc[3];
+        for (int k = n - 1; k > 0; --k) {
+            for (int a = 0; a < 3; ++a) {
+                const Ref& r = refs_[begin + order[a][k]];
+                acc[a].expand(Box{r.lo, r.hi});
+                right_measure[a][k - 1] = measure.of_nonempty(acc[a]);
+            }
+        }
+        // per axis the first least sum; then the first axis with the least (as one sweep of
+        // the axes in turn would pick)
+        float axis_sum[3] = {kInf, kInf, kInf};
+        int axis_k[3] = {0, 0, 0};
+        for (int a = 0; a < 3; ++a) acc[a] = Box{};
+        for (int k = 0; k < n - 1; ++k) {
+            for (int a = 0; a < 3; ++a) {
+                const Ref& r = refs_[begin + order[a][k]];
+                acc[a].expand(Box{r.lo, r.hi});
+                const float sum = measure.of_nonempty(acc[a]) * static_cast<float>(k + 1) +
+                                  right_measure[a][k] * static_cast<float>(n - k - 1);
+                if (sum < axis_sum[a]) {
+                    axis_sum[a] = sum;
+                    axis_k[a] = k;
+                }
+            }
+        }
+        float best_sum = kInf;
+        int best_axis = -1, best_k = 0;
+        for (int a = 0; a < 3; ++a) {
+            if (ce[a] > 0 && axis_sum[a] < best_sum) {
+                best_sum = axis_sum[a];
+                best_axis = a;
+                best_k = axis_k[a];
             }
         }
         if (best_axis < 0) return median(begin, end, 0, child);
@@ -465,6 +522,7 @@ class Builder {
     std::vector<Ref>& refs_;
     const BvhOptions& options_;
     int bins_;
+    size_t serial_below_;  // smaller subtrees are built by one task
 };
 
 }  // namespace
@@ -492,7 +550,16 @@ Bvh Bvh::build(std::span<const Bounds3> bounds, const BvhOptions& options) {
     bvh.nodes_.resize(tree->size);
     Builder::flatten(*tree, bvh.nodes_.data(), 0);
     bvh.order_.resize(refs.size());
-    tbb::parallel_for(size_t{0}, refs.size(), [&](size_t i) { bvh.order_[i] = refs[i].id(); });
+    const auto take_ids = [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) bvh.order_[i] = refs[i].id();
+    };
+    if (refs.size() < 4 * kChunk) {
+        take_ids(0, refs.size());
+    } else {
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(0, refs.size(), kChunk),
+            [&](const tbb::blocked_range<size_t>& r) { take_ids(r.begin(), r.end()); });
+    }
     return bvh;
 }
 

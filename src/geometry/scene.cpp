@@ -52,10 +52,13 @@ void build_bvh(Scene& scene) {
         }
     }
     scene.bvh = Bvh8::build(boxes);
-    // Primitives in leaf order (those with empty bounds, never hit, are left out).
-    scene.bvh_prims.clear();
-    scene.bvh_prims.reserve(scene.bvh.order().size());
-    for (uint32_t id : scene.bvh.order()) scene.bvh_prims.push_back(prims[id]);
+    // Primitives in leaf order (those with empty bounds, never hit, are left out); the order
+    // itself is not kept: slot i is bvh_prims[i].
+    const std::vector<uint32_t> order = scene.bvh.take_order();
+    std::vector<BvhPrim> in_order;
+    in_order.reserve(order.size());
+    for (uint32_t id : order) in_order.push_back(prims[id]);
+    scene.bvh_prims = std::move(in_order);
     scene.has_bvh = true;
     scene.bvh_build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -35,7 +35,7 @@ struct Scene {
     bool has_bvh = false;  ///< build_bvh() ran: queries use the BVH when render.accel is bvh
     double bvh_build_seconds = 0;
 
-    /// Bytes held by the BVH: nodes, leaf order and primitives.
+    /// Bytes held by the BVH: nodes and primitives (the leaf order is not kept).
     size_t bvh_bytes() const {
         return bvh.memory_bytes() + bvh_prims.capacity() * sizeof(BvhPrim) +
                unbounded.capacity() * sizeof(uint32_t);

@@ -42,8 +42,10 @@ class WideBvh {
 
     WideBvh() = default;
     /// Collapses a binary BVH (taking its leaf order): each wide node gathers up to W
-    /// descendants of a binary node, opening the largest (by surface area) interior one first;
-    /// nodes depth first. The tree depends only on the binary one.
+    /// descendants of a binary node; which binary nodes become wide nodes is the least-SAH
+    /// choice (Σ surface area of the wide nodes, found by dynamic programming as in Ylitie et
+    /// al., HPG 2017, with the leaves kept); nodes depth first. The tree depends only on the
+    /// binary one.
     explicit WideBvh(Bvh&& binary);
     /// WideBvh(Bvh::build(bounds, options)).
     static WideBvh build(std::span<const Bounds3> bounds, const BvhOptions& options = {}) {
@@ -54,6 +56,13 @@ class WideBvh {
     const std::vector<Node>& nodes() const { return nodes_; }
     /// Primitive ids in leaf order, as Bvh::order().
     const std::vector<uint32_t>& order() const { return order_; }
+    /// Moves the leaf order out, for an owner that keeps its primitives in leaf order (slot i
+    /// is its i-th primitive): order() is empty afterwards; the traversals still work.
+    std::vector<uint32_t> take_order() {
+        std::vector<uint32_t> order;
+        order.swap(order_);
+        return order;
+    }
     /// Bytes held by the nodes and the order.
     size_t memory_bytes() const {
         return nodes_.capacity() * sizeof(Node) + order_.capacity() * sizeof(uint32_t);

@@ -15,7 +15,7 @@ struct RenderStats {
     uint64_t triangles = 0;                          ///< zbuffer: rasterized; raytrace: in meshes
     uint64_t bvh_nodes = 0;
     double bvh_build_seconds = 0;  ///< building the BVH (part of the scene build)
-    uint64_t bvh_bytes = 0;        ///< nodes, leaf order and primitives
+    uint64_t bvh_bytes = 0;        ///< nodes and primitives (in leaf order)
     /// The share of ray-tracing time spent in intersection, measured on a sample: timers around
     /// every nearest_hit() and transmittance() call of every 64th primary sample (ray_tracer.h),
     /// and around those whole samples. Share = intersect_sampled_seconds / sampled_seconds.

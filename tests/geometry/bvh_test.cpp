@@ -1,12 +1,13 @@
 // The BVH against brute force: the same nearest hit (t, shape, triangle) and the same shadow
 // answers for 100 000 random rays per scene, on random and degenerate meshes (zero-area
 // triangles, every triangle in one plane, duplicated triangles) mixed with other shapes; and
-// the structure of the tree itself.
+// the structure of the tree itself; the scene's mesh and BVH memory.
 #include "geometry/bvh.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <memory>
@@ -335,6 +336,56 @@ TEST(Bvh, EveryPrimitiveInOneLeafInsideEveryAncestor) {
     }
     EXPECT_EQ(bvh.memory_bytes(),
               bvh.nodes().capacity() * sizeof(BvhNode) + bvh.order().capacity() * 4);
+}
+
+/// A bumpy sphere of n segments and n/2 rings (as scripts/make_big_mesh.py makes, smaller).
+ObjectDesc bumpy_sphere(int n) {
+    std::vector<Vec3> p;
+    std::vector<uint32_t> idx;
+    const int rings = n / 2;
+    const float pi = 3.14159265f;
+    const auto r = [](float th, float ph) {
+        return 1 + 0.04f * std::sin(12 * th) * std::sin(15 * ph);
+    };
+    p.push_back({0, r(0, 0), 0});
+    for (int j = 1; j < rings; ++j) {
+        const float th = pi * j / rings;
+        for (int i = 0; i < n; ++i) {
+            const float ph = 2 * pi * i / n, rr = r(th, ph);
+            p.push_back({rr * std::sin(th) * std::cos(ph), rr * std::cos(th),
+                         rr * std::sin(th) * std::sin(ph)});
+        }
+    }
+    p.push_back({0, -r(pi, 0), 0});
+    const auto at = [n](int j, int i) { return static_cast<uint32_t>(1 + (j - 1) * n + i % n); };
+    const uint32_t south = static_cast<uint32_t>(p.size() - 1);
+    for (int i = 0; i < n; ++i) {
+        idx.insert(idx.end(), {0u, at(1, i + 1), at(1, i)});
+        idx.insert(idx.end(), {south, at(rings - 1, i), at(rings - 1, i + 1)});
+        for (int j = 1; j + 1 < rings; ++j) {
+            idx.insert(idx.end(), {at(j, i), at(j, i + 1), at(j + 1, i + 1)});
+            idx.insert(idx.end(), {at(j, i), at(j + 1, i + 1), at(j + 1, i)});
+        }
+    }
+    return mesh_object(p, idx, 0);
+}
+
+// The scene keeps its primitives in leaf order and not the order itself: a mesh and its BVH
+// (nodes and primitives with their vertices) take under 100 bytes per triangle.
+TEST(Bvh, SceneMeshAndBvhUnder100BytesPerTriangle) {
+    for (int n : {64, 180}) {
+        const Scene scene = build_scene(scene_with({bumpy_sphere(n)}));
+        ASSERT_TRUE(scene.has_bvh);
+        EXPECT_TRUE(scene.bvh.order().empty());
+        const Mesh& m = *scene.shapes[0].mesh;
+        const size_t triangles = m.triangle_count();
+        EXPECT_EQ(scene.bvh_prims.size(), triangles);
+        EXPECT_EQ(scene.bvh_bytes(),
+                  scene.bvh.nodes().capacity() * sizeof(Bvh8::Node) + triangles * sizeof(BvhPrim));
+        const size_t bytes = scene.bvh_bytes() + m.positions.capacity() * sizeof(Vec3) +
+                             m.indices.capacity() * sizeof(uint32_t);
+        EXPECT_LT(static_cast<double>(bytes) / static_cast<double>(triangles), 100.0) << n;
+    }
 }
 
 TEST(Bvh, EmptyAndCoincidentInputs) {
