@@ -1,6 +1,7 @@
 // render(): dispatches a runtime scene to the pipeline its settings name.
 #include "render/render.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "render/parallel.h"
@@ -15,16 +16,23 @@ Image render(const Scene& scene, const RenderControl& control, RenderStats& stat
     stats.width = img.width;
     stats.height = img.height;
     stats.threads = resolve_threads(control.threads);
-    Image out(img.width, img.height, img.background);
+    Image out;
     switch (scene.desc.render.pipeline) {
         case Pipeline::zbuffer: {
+            out = Image(img.width, img.height, img.background);  // what no triangle covers
             const ZbufferGeometry geometry = prepare_zbuffer(scene);
             render_zbuffer(scene, geometry, control, out, stats);
             break;
         }
         case Pipeline::raycast:
         case Pipeline::raytrace:
+            // Every pixel is written by the sampler: the memory is first touched there, by all
+            // threads, instead of being filled here by one.
+            out = Image(img.width, img.height, Unwritten{});
             render_ray_traced(scene, control, out, stats);
+            if (control.cancel && control.cancel->load()) {  // incomplete: no unwritten pixel
+                std::fill(out.pixels.begin(), out.pixels.end(), img.background);
+            }
             stats.triangles += scene.mesh_triangles;  // raytrace: triangles in meshes (SPEC §3)
             break;
     }

@@ -6,6 +6,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -208,6 +209,28 @@ TEST(WritePng, ManyBandsRoundTripAndSameBytesOnOneThread) {
         write_image(path, img, e);
         EXPECT_TRUE(same_bits(read_image(path), quantized(img, e)));
     }
+}
+
+}  // namespace
+}  // namespace luz
+
+namespace luz {
+namespace {
+
+// Image(w, h, Unwritten): the right size, its pixels writable; large images start on a 2 MiB
+// boundary (huge pages), small ones anywhere; filled images keep their fill.
+TEST(ImageStorage, UnwrittenAndFilledImages) {
+    Image big(1024, 1024, Unwritten{});  // 12 MiB
+    ASSERT_EQ(big.pixels.size(), 1024u * 1024u);
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(big.pixels.data()) % (uintptr_t{2} << 20), 0u);
+    for (Rgb& p : big.pixels) p = Rgb{0.25f};
+    EXPECT_EQ(big.at(1023, 1023), Rgb{0.25f});
+    const Image small(3, 2, Unwritten{});
+    EXPECT_EQ(small.pixels.size(), 6u);
+    const Image filled(5, 4, Rgb{0.5f, 0.25f, 1.0f});
+    for (const Rgb& p : filled.pixels) EXPECT_EQ(p, (Rgb{0.5f, 0.25f, 1.0f}));
+    const Image copy = filled;
+    EXPECT_TRUE(same_bits(copy, filled));
 }
 
 }  // namespace
