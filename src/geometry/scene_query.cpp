@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "math/next_float.h"
+
 namespace luz {
 
 bool hit_bounds(const Bounds3& b, const Ray& r, const Vec3& inv_dir, float t_min, float t_max) {
@@ -40,7 +42,7 @@ struct Best {
     Hit hit;
 
     /// The t_max for a primitive test: ties with the best must still be reported.
-    float limit() const { return found ? std::nextafter(t, kInfinity) : t; }
+    float limit() const { return found ? next_up(t) : t; }
     bool better(float t2, uint32_t s, uint32_t tri) const {
         return !found || t2 < t || (t2 == t && (s < shape || (s == shape && tri < triangle)));
     }
