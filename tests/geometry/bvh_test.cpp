@@ -15,25 +15,15 @@
 
 #include "geometry/scene.h"
 #include "geometry/scene_query.h"
+#include "geometry_fixtures.h"
 
 namespace luz {
 namespace {
 
-using Rng = std::mt19937;
-
-float uniform(Rng& rng, float lo, float hi) {
-    return std::uniform_real_distribution<float>(lo, hi)(rng);
-}
-Vec3 random_point(Rng& rng, float lo, float hi) {
-    return {uniform(rng, lo, hi), uniform(rng, lo, hi), uniform(rng, lo, hi)};
-}
-Vec3 random_direction(Rng& rng) {
-    for (;;) {
-        const Vec3 d = random_point(rng, -1, 1);
-        const float l = length(d);
-        if (l > 0.05f && l <= 1) return d / l;
-    }
-}
+using test::random_direction;
+using test::random_point;
+using test::Rng;
+using test::uniform;
 
 /// A mesh object from triangle vertex triples (vertices shared where the triples share them).
 ObjectDesc mesh_object(const std::vector<Vec3>& positions, const std::vector<uint32_t>& index,

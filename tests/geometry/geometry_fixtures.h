@@ -1,9 +1,11 @@
-// Shared helpers of the geometry tests: object descriptions of every shape, user transforms,
-// and checks on tessellated meshes (edges by position, areas, reference points for normals).
+// Shared helpers of the geometry tests: random points and directions, object descriptions of
+// every shape, user transforms, and checks on tessellated meshes (edges by position, areas,
+// reference points for normals).
 #pragma once
 
 #include <cmath>
 #include <map>
+#include <random>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -16,6 +18,23 @@
 #include "scene/scene_desc.h"
 
 namespace luz::test {
+
+using Rng = std::mt19937;
+
+inline float uniform(Rng& rng, float lo, float hi) {
+    return std::uniform_real_distribution<float>(lo, hi)(rng);
+}
+inline Vec3 random_point(Rng& rng, float lo, float hi) {
+    return {uniform(rng, lo, hi), uniform(rng, lo, hi), uniform(rng, lo, hi)};
+}
+/// A unit vector, uniform over directions (rejection from the unit ball).
+inline Vec3 random_direction(Rng& rng) {
+    for (;;) {
+        const Vec3 d = random_point(rng, -1, 1);
+        const float l = length(d);
+        if (l > 0.05f && l <= 1) return d / l;
+    }
+}
 
 /// The `transform` key: p_world = T·Rz·Ry·Rx·S·p (SPEC §2).
 inline Affine user_transform(Vec3 scale, Vec3 rotate_deg, Vec3 translate) {

@@ -837,14 +837,9 @@ std::vector<double> world_form_reference(const Shape& s, const Ray& r) {
 // side, as the ray tracer spawns them), spheres of radius 0.01 to 1000; the same crossing
 // counts.
 TEST(Intersect, WorldFormSpheresAndPlanesAgreeWithDoubleSolutions) {
-    std::mt19937 rng(7);
+    Rng rng(7);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    auto unit = [&] {
-        Vec3 v;
-        do v = {u(rng), u(rng), u(rng)};
-        while (dot(v, v) > 1 || dot(v, v) < 1e-3f);
-        return normalize(v);
-    };
+    auto unit = [&] { return random_direction(rng); };
     int compared = 0, disagreements = 0, counted = 0, count_differs = 0;
     int spawned_disagreements = 0;  // rays from (1e-4 off) the surface: never a wrong answer
     for (float radius : {0.01f, 1.0f, 37.5f, 1000.0f}) {

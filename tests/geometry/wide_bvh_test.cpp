@@ -15,18 +15,14 @@
 #include <vector>
 
 #include "geometry/intersect.h"
+#include "geometry_fixtures.h"
 
 namespace luz {
 namespace {
 
-using Rng = std::mt19937;
-
-float uniform(Rng& rng, float lo, float hi) {
-    return std::uniform_real_distribution<float>(lo, hi)(rng);
-}
-Vec3 random_point(Rng& rng, float lo, float hi) {
-    return {uniform(rng, lo, hi), uniform(rng, lo, hi), uniform(rng, lo, hi)};
-}
+using test::random_point;
+using test::Rng;
+using test::uniform;
 
 /// A triangle soup in [−4, 4]³ on a grid of 1/8 (exactly representable: shared vertices,
 /// coplanar faces and ties are common), and its boxes.
