@@ -32,18 +32,7 @@ done
 packages=(cmake ninja-build g++ pkg-config nlohmann-json3-dev libcli11-dev libpng-dev
           libopenexr-dev libtbb-dev libgtest-dev libgmock-dev libtinyobjloader-dev povray
           gnuplot-nox python3)
-missing=()
-for p in "${packages[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
-        missing+=("$p")
-done
-if ((${#missing[@]})); then
-    echo "installing: ${missing[*]}" >&2
-    sudo=()
-    if ((EUID != 0)); then sudo=(sudo); fi
-    "${sudo[@]}" apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq "${missing[@]}" >/dev/null
-fi
+"$repo/bench/install_packages.sh" "${packages[@]}"
 
 # 2. Build luz: the `native` preset, or the same settings in another folder.
 cd "$repo"

@@ -48,18 +48,7 @@ if [[ -z "${LUZ:-}" && ! -x "$repo/build/release/luz" ]]; then
     packages+=(cmake ninja-build g++ nlohmann-json3-dev libcli11-dev libpng-dev libopenexr-dev
                libtbb-dev libgtest-dev libgmock-dev)
 fi
-missing=()
-for p in "${packages[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
-        missing+=("$p")
-done
-if ((${#missing[@]})); then
-    echo "installing: ${missing[*]}" >&2
-    sudo=()
-    if ((EUID != 0)); then sudo=(sudo); fi
-    "${sudo[@]}" apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq "${missing[@]}"
-fi
+"$repo/bench/install_packages.sh" "${packages[@]}"
 
 # 2. luz, Release (the `release` preset: -O3, portable, no -march=native).
 cd "$repo"
