@@ -28,6 +28,7 @@
 #include "geometry/scene.h"
 #include "geometry/scene_query.h"
 #include "geometry/wide_bvh.h"
+#include "machine_load.h"
 #include "scene/obj_loader.h"
 
 namespace {
@@ -60,22 +61,8 @@ double now_seconds() {
         .count();
 }
 
-double cpu_seconds() {
-    timespec ts{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-/// CPU seconds spent by the whole machine (all processes, /proc/stat), or −1 if unknown.
-double machine_busy_seconds() {
-    std::ifstream in("/proc/stat");
-    std::string cpu;
-    unsigned long long user, nice, system, idle, iowait, irq, softirq, steal;
-    if (!(in >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal))
-        return -1;
-    const double hz = static_cast<double>(sysconf(_SC_CLK_TCK));
-    return static_cast<double>(user + nice + system + irq + softirq + steal) / hz;
-}
+using bench::cpu_seconds;
+using bench::machine_busy_seconds;
 
 /// Waits until other processes leave the CPUs nearly idle (< 0.1 core over half a second), for
 /// at most `max_seconds`.

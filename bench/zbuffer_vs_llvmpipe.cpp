@@ -33,6 +33,7 @@
 
 #include "geometry/scene.h"
 #include "image/image_io.h"
+#include "machine_load.h"
 #include "render/zbuffer.h"
 #include "scene/camera.h"
 
@@ -124,22 +125,8 @@ uint64_t mesh_hash(const TriangleMesh& m) {
     return h;
 }
 
-double cpu_seconds() {
-    timespec ts{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-/// CPU seconds spent by the whole machine (all processes, /proc/stat), or −1 if unknown.
-double machine_busy_seconds() {
-    std::ifstream in("/proc/stat");
-    std::string cpu;
-    unsigned long long user, nice, system, idle, iowait, irq, softirq, steal;
-    if (!(in >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal))
-        return -1;
-    const double hz = static_cast<double>(sysconf(_SC_CLK_TCK));
-    return static_cast<double>(user + nice + system + irq + softirq + steal) / hz;
-}
+using bench::cpu_seconds;
+using bench::machine_busy_seconds;
 
 /// The number of threads of this process (/proc/self/status), or −1.
 int process_threads() {
