@@ -30,6 +30,16 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 Vec3 inverse_direction(const Vec3& d) { return {1.0f / d.x, 1.0f / d.y, 1.0f / d.z}; }
 
+/// Scenes of at most this many shapes and no mesh are tested shape by shape, even with a BVH:
+/// one 8-wide node would hold them all, and a world-form sphere's own test costs about what
+/// its box test does.
+constexpr size_t kDirectShapes = 8;
+
+bool use_direct(const Scene& scene) {
+    return scene.has_bvh && scene.desc.render.accel == Accel::bvh && scene.mesh_triangles == 0 &&
+           scene.shapes.size() <= kDirectShapes;
+}
+
 bool use_bvh(const Scene& scene) { return scene.has_bvh && scene.desc.render.accel == Accel::bvh; }
 
 /// The nearest hit so far, ordered by (t, shape, triangle): whatever order primitives are
@@ -237,6 +247,58 @@ float transmittance_all(const Scene& scene, const Ray& r, float t_min, float t_m
     return crossings.product();
 }
 
+/// A small scene without meshes (use_direct): every shape in scene order, behind its box only
+/// when it has no world form. The nearest hit needs no tie rule of its own: a later shape
+/// must be strictly nearer to replace an earlier one, so ties keep the lowest shape.
+bool nearest_direct(const Scene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
+                    IntersectCounters& counters) {
+    Vec3 inv_dir{0.0f};
+    bool have_inv_dir = false;
+    int nearest = -1;
+    Hit best;
+    for (size_t k = 0; k < scene.shapes.size(); ++k) {
+        const Shape& s = scene.shapes[k];
+        if (!s.world_form && is_bounded(s)) {
+            if (!have_inv_dir) inv_dir = inverse_direction(r.direction);
+            have_inv_dir = true;
+            ++counters.bounds;
+            if (!hit_bounds(scene.bounds[k], r, inv_dir, t_min, bvh_detail::with_margin(t_max)))
+                continue;
+        }
+        ++counters.primitive;
+        Hit h;
+        if (intersect(s, r, t_min, t_max, h)) {
+            best = h;
+            t_max = h.t;
+            nearest = static_cast<int>(k);
+        }
+    }
+    if (nearest < 0) return false;
+    hit = best;
+    hit.shape = nearest;
+    return true;
+}
+
+/// transmittance() of a small scene without meshes (use_direct), shape by shape.
+float transmittance_direct(const Scene& scene, const Ray& r, float t_min, float t_max,
+                           IntersectCounters& counters) {
+    Vec3 inv_dir{0.0f};
+    bool have_inv_dir = false;
+    Crossings crossings;
+    for (size_t k = 0; k < scene.shapes.size(); ++k) {
+        const Shape& s = scene.shapes[k];
+        if (!s.world_form && is_bounded(s)) {
+            if (!have_inv_dir) inv_dir = inverse_direction(r.direction);
+            have_inv_dir = true;
+            ++counters.bounds;
+            if (!hit_bounds(scene.bounds[k], r, inv_dir, t_min, t_max)) continue;
+        }
+        if (!cross_shape(scene, static_cast<uint32_t>(k), r, t_min, t_max, crossings, counters))
+            return 0.0f;
+    }
+    return crossings.product();
+}
+
 /// Runs f(), adding its duration to counters.query_ns when counters.timing is set.
 template <class F>
 auto timed(IntersectCounters& counters, F&& f) {
@@ -254,6 +316,7 @@ auto timed(IntersectCounters& counters, F&& f) {
 bool nearest_hit(const Scene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
                  IntersectCounters& counters) {
     return timed(counters, [&] {
+        if (use_direct(scene)) return nearest_direct(scene, r, t_min, t_max, hit, counters);
         Best best(t_max);
         const bool found = use_bvh(scene) ? nearest_bvh(scene, r, t_min, best, counters)
                                           : nearest_all(scene, r, t_min, best, counters);
@@ -265,6 +328,7 @@ bool nearest_hit(const Scene& scene, const Ray& r, float t_min, float t_max, Hit
 float transmittance(const Scene& scene, const Ray& r, float t_min, float t_max,
                     IntersectCounters& counters) {
     return timed(counters, [&] {
+        if (use_direct(scene)) return transmittance_direct(scene, r, t_min, t_max, counters);
         return use_bvh(scene) ? transmittance_bvh(scene, r, t_min, t_max, counters)
                               : transmittance_all(scene, r, t_min, t_max, counters);
     });

@@ -267,6 +267,77 @@ TEST(BvhEqualsBruteForce, ShadowProductsDoNotDependOnTheOrderOfCrossings) {
     }
 }
 
+TEST(SmallScenes, ShapeByShapeEqualsTheBvhAndTestingEverything) {
+    // At most 8 shapes and no mesh: nearest_hit and transmittance test shape by shape (spheres
+    // in world form without their box) instead of traversing the BVH. A ninth shape far away
+    // makes the same scene take the BVH; every answer must be the same bits in all three ways,
+    // including ties: two coincident spheres of different materials (the lower one wins).
+    std::vector<ObjectDesc> objects = {sphere({0, 0, 0}, 1.5f, 1), sphere({0, 0, 0}, 1.5f, 2),
+                                       sphere({2, 1, -1}, 0.8f, 0)};
+    ObjectDesc ellipsoid = sphere({-2, 1, 1}, 1.0f, 1);
+    ellipsoid.transform = scaling({1.5f, 0.5f, 1.0f});  // not a similarity: object space
+    objects.push_back(ellipsoid);
+    ObjectDesc box;
+    box.type = ShapeType::box;
+    box.min = {1, -3, 1};
+    box.max = {3, -1, 2};
+    box.material = 2;
+    objects.push_back(box);
+    ObjectDesc torus;
+    torus.type = ShapeType::torus;
+    torus.center = {-2, -2, -1};
+    torus.major_radius = 1.2f;
+    torus.minor_radius = 0.4f;
+    torus.material = 1;
+    objects.push_back(torus);
+    ObjectDesc plane;
+    plane.type = ShapeType::plane;
+    plane.point = {0, -4, 0};
+    plane.material = 2;
+    objects.push_back(plane);
+    ASSERT_LE(objects.size(), 8u);
+    const Scene direct = build_scene(scene_with(objects));
+    objects.push_back(sphere({500, 500, 500}, 1.0f, 0));
+    const Scene bvh = build_scene(scene_with(objects));
+    Scene all = direct;
+    all.desc.render.accel = Accel::none;
+
+    RandomRays gen;
+    IntersectCounters cd, cb, ca;
+    int hits = 0, ties = 0, partial = 0, mismatches = 0;
+    for (int k = 0; k < 50000; ++k) {
+        float t_max;
+        const Ray r = gen.next(k, t_max);
+        Hit h[3];
+        const bool f[3] = {nearest_hit(direct, r, 0.0f, t_max, h[0], cd),
+                           nearest_hit(bvh, r, 0.0f, t_max, h[1], cb),
+                           nearest_hit(all, r, 0.0f, t_max, h[2], ca)};
+        const float T[3] = {transmittance(direct, r, 0.0f, t_max, cd),
+                            transmittance(bvh, r, 0.0f, t_max, cb),
+                            transmittance(all, r, 0.0f, t_max, ca)};
+        for (int w = 1; w < 3; ++w) {
+            const bool same =
+                f[0] == f[w] &&
+                (!f[0] || (h[0].t == h[w].t && h[0].shape == h[w].shape && h[0].part == h[w].part));
+            if ((!same || std::memcmp(&T[0], &T[w], sizeof(float)) != 0) && ++mismatches <= 5) {
+                ADD_FAILURE() << "ray " << k << " way " << w << ": shape " << h[0].shape
+                              << " t=" << h[0].t << " T=" << T[0] << " vs shape " << h[w].shape
+                              << " t=" << h[w].t << " T=" << T[w];
+            }
+        }
+        hits += f[0];
+        ties += f[0] && h[0].shape == 0;
+        EXPECT_NE(h[0].shape, 1) << "ray " << k << ": the tie went to the higher sphere";
+        partial += T[0] > 0 && T[0] < 1;
+    }
+    EXPECT_EQ(mismatches, 0);
+    EXPECT_GT(hits, 10000);
+    EXPECT_GT(ties, 1000);
+    EXPECT_GT(partial, 1000);
+    // The direct path tested no box of a world-form sphere; the BVH and `none` did.
+    EXPECT_LT(cd.bounds, ca.bounds / 2);
+}
+
 // ---- the tree itself ------------------------------------------------------------------------
 
 bool contains(const BvhNode& n, const Bounds3& b) {
