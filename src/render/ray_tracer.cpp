@@ -71,6 +71,14 @@ int RayTracer::nearest_light(const Ray& ray, float& t_max, TraceCounters& counte
 
 Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& distance,
                      RayTree* tree) const {
+    return tree ? trace_impl<true>(ray, depth, counters, distance, tree)
+                : trace_impl<false>(ray, depth, counters, distance, nullptr);
+}
+
+template <bool kRecord>
+Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, float& distance,
+                          RayTree* tree_in) const {
+    RayTree* const tree = kRecord ? tree_in : nullptr;  // a constant null when not recording
     const SceneDesc& desc = scene_.desc;
     // Ray-tree recording (viewer only): this ray's node, filled as the numbers are computed.
     int self = -1;
@@ -148,7 +156,7 @@ Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& 
         ++count;
         float d;
         if (tree) child = static_cast<int>(tree->nodes.size());
-        const Rgb s = trace(r, depth + 1, counters, d, tree);
+        const Rgb s = trace_impl<kRecord>(r, depth + 1, counters, d, tree);
         if (tree) {
             tree->nodes[child].returned = s;
             tree->nodes[child].A = !tree_attenuation_ ? 1.0f
@@ -195,12 +203,12 @@ Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& 
 Rgb RayTracer::sample(float px, float py, TraceCounters& counters) const {
     float distance;
     if (counters.primary++ % kTimedSampleEvery != 0) {
-        return trace(camera_.ray(px, py), 0, counters, distance);
+        return trace_impl<false>(camera_.ray(px, py), 0, counters, distance, nullptr);
     }
     // A timed sample: the whole of it, and its scene queries (IntersectCounters::timing).
     const auto start = std::chrono::steady_clock::now();
     counters.tests.timing = true;
-    const Rgb c = trace(camera_.ray(px, py), 0, counters, distance);
+    const Rgb c = trace_impl<false>(camera_.ray(px, py), 0, counters, distance, nullptr);
     counters.tests.timing = false;
     counters.timed_ns += static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
                                                    std::chrono::steady_clock::now() - start)

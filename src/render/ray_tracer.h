@@ -25,7 +25,7 @@ struct TraceCounters {
 
 /// One primary sample in this many is timed whole and in its scene queries, to measure the
 /// share of time spent in intersection (RenderStats::intersect_sampled_seconds).
-inline constexpr uint64_t kTimedSampleEvery = 64;
+inline constexpr uint64_t kTimedSampleEvery = 256;
 
 /// Offset of secondary and shadow ray origins along the geometric normal (SPEC §1.1: ≤ 1e-4).
 inline constexpr float kRayEpsilon = 1e-4f;
@@ -65,6 +65,12 @@ class RayTracer {
     const Camera& camera() const { return camera_; }
 
   private:
+    /// trace() with ray-tree recording (kRecord, `tree` set) or without: the renders' copy
+    /// carries none of the recording's branches and state.
+    template <bool kRecord>
+    Rgb trace_impl(const Ray& ray, int depth, TraceCounters& counters, float& distance,
+                   RayTree* tree_in) const;
+
     /// The nearest visible light sphere along ray within (0, t_max), or −1.
     int nearest_light(const Ray& ray, float& t_max, TraceCounters& counters) const;
 
