@@ -178,8 +178,9 @@ class Crossings {
 
 /// Every crossing of shape i (not a mesh) with r in (t_min, t_max); false on an opaque one.
 /// Inlined: it is the inner loop of every shadow ray.
-[[gnu::always_inline]] inline bool cross_shape(const Scene& scene, uint32_t i, const Ray& r, float t_min, float t_max,
-                 Crossings& crossings, IntersectCounters& counters) {
+[[gnu::always_inline]] inline bool cross_shape(const Scene& scene, uint32_t i, const Ray& r,
+                                               float t_min, float t_max, Crossings& crossings,
+                                               IntersectCounters& counters) {
     const Shape& s = scene.shapes[i];
     const float transparency = scene.desc.materials[s.material].transparency;
     const uint32_t n = count_crossings(s, r, t_min, t_max, transparency <= 0, counters.primitive);
