@@ -367,10 +367,11 @@ bool intersect_mesh(const Mesh& mesh, const WatertightRay& w, float t_min, float
 
 namespace detail {
 
-bool world_sphere_roots_double(const Shape& s, const Ray& r, float& t0, float& t1) {
-    const D3 o{double(r.origin.x) - s.centre.x, double(r.origin.y) - s.centre.y,
-               double(r.origin.z) - s.centre.z};
-    const double rho = s.radius;
+bool world_sphere_roots_double(const Vec3& centre, float radius, const Ray& r, float& t0,
+                               float& t1) {
+    const D3 o{double(r.origin.x) - centre.x, double(r.origin.y) - centre.y,
+               double(r.origin.z) - centre.z};
+    const double rho = radius;
     double r0, r1;
     if (!sphere_roots(o, to_d3(r.direction), rho * rho, r0, r1)) return false;
     t0 = static_cast<float>(r0);

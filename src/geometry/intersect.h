@@ -33,25 +33,27 @@ struct Hit {
 };
 
 namespace detail {
-bool world_sphere_roots_double(const Shape& s, const Ray& r, float& t0, float& t1);
+bool world_sphere_roots_double(const Vec3& centre, float radius, const Ray& r, float& t0,
+                               float& t1);
 bool intersect_object_space(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit);
 uint32_t count_crossings_object_space(const Shape& s, const Ray& r, float t_min, float t_max,
                                       bool first_only, uint64_t& tests);
 }  // namespace detail
 
-/// The roots t0 ≤ t1 of world ray r with sphere s in world form (Shape::world_form), false if
-/// it misses. Solved in float (the roots c/q and q/a of a·t² + 2b·t + c with q = −(b ± √disc),
-/// disc without cancellation as Haines et al., Ray Tracing Gems ch. 7), or in double where
-/// float cannot be trusted: c = |o|² − ρ² near 0 (an origin on the surface, as spawned
-/// secondary and shadow rays have), whose sign decides whether the near root lies ahead.
-inline bool world_sphere_roots(const Shape& s, const Ray& r, float& t0, float& t1) {
-    const Vec3 o = r.origin - s.centre, d = r.direction;
-    const float rr = s.radius * s.radius;
+/// The roots t0 ≤ t1 of world ray r with the sphere of `centre` and `radius` (a sphere in world
+/// form, Shape::world_form), false if it misses. Solved in float (the roots c/q and q/a of a·t² +
+/// 2b·t + c with q = −(b ± √disc), disc without cancellation as Haines et al., Ray Tracing Gems ch.
+/// 7), or in double where float cannot be trusted: c = |o|² − ρ² near 0 (an origin on the surface,
+/// as spawned secondary and shadow rays have), whose sign decides whether the near root lies ahead.
+inline bool world_sphere_roots(const Vec3& centre, float radius, const Ray& r, float& t0,
+                               float& t1) {
+    const Vec3 o = r.origin - centre, d = r.direction;
+    const float rr = radius * radius;
     const float a = dot(d, d), b = dot(o, d), oo = dot(o, o), c = oo - rr;
     // |error of c| ≤ ~3 ulp of max(|o|², ρ²); beyond 2^-17 of it, c's sign is sure and the
     // near root's error stays at the float rounding of the ray itself.
     if (std::fabs(c) < 0x1p-17f * std::max(oo, rr) || !(a > 0)) {
-        return detail::world_sphere_roots_double(s, r, t0, t1);
+        return detail::world_sphere_roots_double(centre, radius, r, t0, t1);
     }
     const float inv_a = 1.0f / a;
     const Vec3 l = o - d * (b * inv_a);
@@ -81,7 +83,7 @@ inline bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hi
     if (!s.world_form) return detail::intersect_object_space(s, r, t_min, t_max, hit);
     float t0, t1;
     if (s.type == ShapeType::sphere) {
-        if (!world_sphere_roots(s, r, t0, t1)) return false;
+        if (!world_sphere_roots(s.centre, s.radius, r, t0, t1)) return false;
     } else {
         t0 = t1 = world_plane_root(s, r);
     }
@@ -105,7 +107,7 @@ inline uint32_t count_crossings(const Shape& s, const Ray& r, float t_min, float
     ++tests;
     float t0, t1;
     if (s.type == ShapeType::sphere) {
-        if (!world_sphere_roots(s, r, t0, t1)) return 0;
+        if (!world_sphere_roots(s.centre, s.radius, r, t0, t1)) return 0;
     } else {
         t0 = world_plane_root(s, r);
         t1 = std::numeric_limits<float>::quiet_NaN();  // one root only

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "geometry/shape.h"
+#include "geometry/sphere_group.h"
 #include "geometry/wide_bvh.h"
 #include "scene/scene_desc.h"
 
@@ -33,6 +34,12 @@ struct Scene {
     std::vector<BvhPrim> bvh_prims;   ///< in the BVH's leaf order: slot i is bvh_prims[i]
     std::vector<uint32_t> unbounded;  ///< shapes outside the BVH (planes), in scene order
     bool has_bvh = false;  ///< build_bvh() ran: queries use the BVH when render.accel is bvh
+    // A scene of at most kDirectShapes shapes and no mesh, which one 8-wide node would hold, is
+    // tested shape by shape instead (`direct`), its spheres in world form four at a time.
+    static constexpr size_t kDirectShapes = 8;
+    bool direct = false;
+    std::vector<SphereGroup> sphere_groups;
+    std::vector<int> sphere_lane;  ///< per shape: its lane in sphere_groups (4·group + lane), or −1
     double bvh_build_seconds = 0;
 
     /// Bytes held by the BVH: nodes and primitives (the leaf order is not kept).

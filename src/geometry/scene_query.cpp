@@ -30,14 +30,9 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 Vec3 inverse_direction(const Vec3& d) { return {1.0f / d.x, 1.0f / d.y, 1.0f / d.z}; }
 
-/// Scenes of at most this many shapes and no mesh are tested shape by shape, even with a BVH:
-/// one 8-wide node would hold them all, and a world-form sphere's own test costs about what
-/// its box test does.
-constexpr size_t kDirectShapes = 8;
-
+/// A small scene without meshes (Scene::direct): tested shape by shape, even with a BVH.
 bool use_direct(const Scene& scene) {
-    return scene.has_bvh && scene.desc.render.accel == Accel::bvh && scene.mesh_triangles == 0 &&
-           scene.shapes.size() <= kDirectShapes;
+    return scene.direct && scene.desc.render.accel == Accel::bvh;
 }
 
 bool use_bvh(const Scene& scene) { return scene.has_bvh && scene.desc.render.accel == Accel::bvh; }
@@ -249,25 +244,52 @@ float transmittance_all(const Scene& scene, const Ray& r, float t_min, float t_m
     return crossings.product();
 }
 
-/// A small scene without meshes (use_direct): every shape in scene order, behind its box only
-/// when it has no world form. The nearest hit needs no tie rule of its own: a later shape
-/// must be strictly nearer to replace an earlier one, so ties keep the lowest shape.
+/// The roots of r with every sphere group of a direct scene, at once.
+struct GroupRoots {
+    SphereGroupRoots group[Scene::kDirectShapes / SphereGroup::kLanes];
+    explicit GroupRoots(const Scene& scene, const Ray& r) {
+        for (size_t g = 0; g < scene.sphere_groups.size(); ++g)
+            group[g] = sphere_group_roots(scene.sphere_groups[g], r);
+    }
+};
+
+/// A small scene without meshes (use_direct): every shape in scene order, its spheres from
+/// their groups' roots, the other shapes behind their box when they have no world form. The
+/// nearest hit needs no tie rule of its own: a later shape must be strictly nearer to replace
+/// an earlier one, so ties keep the lowest shape.
 bool nearest_direct(const Scene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
                     IntersectCounters& counters) {
+    const GroupRoots roots(scene, r);
     Vec3 inv_dir{0.0f};
     bool have_inv_dir = false;
     int nearest = -1;
     Hit best;
     for (size_t k = 0; k < scene.shapes.size(); ++k) {
         const Shape& s = scene.shapes[k];
-        if (!s.world_form && is_bounded(s)) {
+        ++counters.primitive;
+        if (const int lane = scene.sphere_lane[k]; lane >= 0) {
+            const SphereGroupRoots& g = roots.group[lane / SphereGroup::kLanes];
+            const unsigned bit = 1u << (lane % SphereGroup::kLanes);
+            if (!(g.slow & bit)) {  // intersect()'s choice between the roots
+                if (!(g.hit & bit)) continue;
+                const float t0 = g.t0[lane % SphereGroup::kLanes];
+                const float t = t0 > t_min ? t0 : g.t1[lane % SphereGroup::kLanes];
+                if (t > t_min && t < t_max) {
+                    best.t = t;
+                    best.u = best.v = 0;
+                    best.part = part_side;
+                    t_max = t;
+                    nearest = static_cast<int>(k);
+                }
+                continue;
+            }
+        } else if (!s.world_form && is_bounded(s)) {
             if (!have_inv_dir) inv_dir = inverse_direction(r.direction);
             have_inv_dir = true;
             ++counters.bounds;
             if (!hit_bounds(scene.bounds[k], r, inv_dir, t_min, bvh_detail::with_margin(t_max)))
                 continue;
         }
-        ++counters.primitive;
         Hit h;
         if (intersect(s, r, t_min, t_max, h)) {
             best = h;
@@ -284,12 +306,29 @@ bool nearest_direct(const Scene& scene, const Ray& r, float t_min, float t_max, 
 /// transmittance() of a small scene without meshes (use_direct), shape by shape.
 float transmittance_direct(const Scene& scene, const Ray& r, float t_min, float t_max,
                            IntersectCounters& counters) {
+    const GroupRoots roots(scene, r);
     Vec3 inv_dir{0.0f};
     bool have_inv_dir = false;
     Crossings crossings;
     for (size_t k = 0; k < scene.shapes.size(); ++k) {
         const Shape& s = scene.shapes[k];
-        if (!s.world_form && is_bounded(s)) {
+        if (const int lane = scene.sphere_lane[k]; lane >= 0) {
+            const SphereGroupRoots& g = roots.group[lane / SphereGroup::kLanes];
+            const unsigned bit = 1u << (lane % SphereGroup::kLanes);
+            if (!(g.slow & bit)) {  // count_crossings() of the roots
+                ++counters.primitive;
+                if (!(g.hit & bit)) continue;
+                const float t0 = g.t0[lane % SphereGroup::kLanes];
+                const float t1 = g.t1[lane % SphereGroup::kLanes];
+                const uint32_t n =
+                    (t0 > t_min && t0 < t_max ? 1 : 0) + (t1 > t_min && t1 < t_max ? 1 : 0);
+                if (n == 0) continue;
+                const float transparency = scene.desc.materials[s.material].transparency;
+                if (transparency <= 0) return 0.0f;
+                crossings.add(s.material, n, transparency);
+                continue;
+            }
+        } else if (!s.world_form && is_bounded(s)) {
             if (!have_inv_dir) inv_dir = inverse_direction(r.direction);
             have_inv_dir = true;
             ++counters.bounds;

@@ -1,0 +1,84 @@
+// Sphere groups (geometry/sphere_group.h): four spheres tested at once must give the very bits
+// world_sphere_roots() gives one by one, and flag exactly the lanes that need its double path.
+#include "geometry/sphere_group.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <vector>
+
+#include "geometry_fixtures.h"
+
+namespace luz {
+namespace {
+
+using test::random_direction;
+using test::random_point;
+using test::Rng;
+using test::uniform;
+
+bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0; }
+
+TEST(SphereGroup, FourAtOnceEqualsOneByOneBitForBit) {
+    Rng rng(11);
+    int hits = 0, slow = 0, compared = 0;
+    for (int scene = 0; scene < 200; ++scene) {
+        // 1 to 8 spheres of very different sizes (two groups when more than four)
+        std::vector<Shape> spheres(1 + scene % 8);
+        std::vector<SphereGroup> groups;
+        for (size_t i = 0; i < spheres.size(); ++i) {
+            Shape& s = spheres[i];
+            s.world_form = true;
+            s.centre = random_point(rng, -5, 5);
+            s.radius = (scene % 3 == 0 ? 100.0f : 1.0f) * uniform(rng, 0.01f, 2.0f);
+            const int lane = add_to_sphere_groups(groups, s, static_cast<uint32_t>(i));
+            ASSERT_EQ(lane, static_cast<int>(i));
+        }
+        for (int k = 0; k < 500; ++k) {
+            // origins far, near, and on a sphere (1e-4 off it, as spawned rays start), where
+            // the float test hands over to double
+            Vec3 origin = random_point(rng, -20, 20);
+            const Shape& on = spheres[static_cast<size_t>(k) % spheres.size()];
+            if (k % 3 == 0) {
+                origin =
+                    on.centre + random_direction(rng) * (on.radius + ((k & 4) ? 1e-4f : -1e-4f));
+            }
+            Vec3 direction = random_direction(rng);
+            if (k % 5 == 0) direction = direction * 3.0f;  // not unit
+            if (k == 7) direction = Vec3{0.0f};            // degenerate: all to double
+            const Ray r{origin, direction};
+            for (const SphereGroup& g : groups) {
+                const SphereGroupRoots fast = sphere_group_roots(g, r);
+                for (int lane = 0; lane < g.count; ++lane) {
+                    const unsigned bit = 1u << lane;
+                    float t0 = 0, t1 = 0;
+                    const bool hit = world_sphere_roots({g.cx[lane], g.cy[lane], g.cz[lane]},
+                                                        g.radius[lane], r, t0, t1);
+                    ++compared;
+                    if (fast.slow & bit) {  // the caller tests it alone
+                        ++slow;
+                        EXPECT_FALSE(fast.hit & bit);
+                        continue;
+                    }
+                    ASSERT_EQ(hit, (fast.hit & bit) != 0) << "scene " << scene << " ray " << k;
+                    if (!hit) continue;
+                    ++hits;
+                    ASSERT_TRUE(same_bits(t0, fast.t0[lane]) && same_bits(t1, fast.t1[lane]))
+                        << "scene " << scene << " ray " << k << " lane " << lane << ": " << t0
+                        << ", " << t1 << " vs " << fast.t0[lane] << ", " << fast.t1[lane];
+                }
+                EXPECT_EQ(fast.hit >> g.count, 0u);  // unused lanes are never reported
+                EXPECT_EQ(fast.slow >> g.count, 0u);
+                // the portable version agrees too, and leaves nothing to the caller
+                const SphereGroupRoots one = sphere_group_roots_one_by_one(g, r);
+                EXPECT_EQ(one.slow, 0u);
+                EXPECT_EQ(one.hit & ~fast.slow, fast.hit);
+            }
+        }
+    }
+    EXPECT_GT(hits, compared / 10);
+    EXPECT_GT(slow, compared / 50);  // rays from on a sphere, and the zero direction
+}
+
+}  // namespace
+}  // namespace luz
