@@ -100,6 +100,9 @@ inline SphereGroupRoots sphere_group_roots(const SphereGroup& g, const Ray& r) {
     const __m128 lz = _mm_sub_ps(oz, _mm_mul_ps(dz, s));
     const __m128 disc = _mm_mul_ps(_mm_set1_ps(a), _mm_sub_ps(rr, dot3(lx, ly, lz, lx, ly, lz)));
     const __m128 hit = _mm_cmpnlt_ps(disc, _mm_setzero_ps());  // !(disc < 0)
+    out.slow = static_cast<unsigned>(_mm_movemask_ps(slow)) & used;
+    out.hit = static_cast<unsigned>(_mm_movemask_ps(hit)) & used & ~out.slow;
+    if (out.hit == 0) return out;  // no root to find: spare the square root and division
     // q = −(b + copysign(√disc, b)); roots c/q and q/a, the smaller first
     const __m128 root = _mm_sqrt_ps(disc);
     const __m128 signed_root = _mm_or_ps(_mm_andnot_ps(sign, root), _mm_and_ps(sign, b));
@@ -107,9 +110,6 @@ inline SphereGroupRoots sphere_group_roots(const SphereGroup& g, const Ray& r) {
     const __m128 f0 = _mm_div_ps(c, q), f1 = _mm_mul_ps(q, _mm_set1_ps(inv_a));
     _mm_storeu_ps(out.t0, _mm_min_ps(f1, f0));  // std::min(f0, f1): f1 < f0 ? f1 : f0
     _mm_storeu_ps(out.t1, _mm_max_ps(f1, f0));  // std::max(f0, f1): f0 < f1 ? f1 : f0
-    const unsigned slow_bits = static_cast<unsigned>(_mm_movemask_ps(slow)) & used;
-    out.slow = slow_bits;
-    out.hit = static_cast<unsigned>(_mm_movemask_ps(hit)) & used & ~slow_bits;
 #else
     out = sphere_group_roots_one_by_one(g, r);
 #endif

@@ -260,7 +260,8 @@ std::vector<Rgb>& grid_scratch_for_this_thread();
 
 /// Renders an image with the antialiasing `aa`: `colour(x, y, counters)` gives the colour at
 /// pixel-space point (x, y) and may count into `counters` (one Counters per work item, in
-/// `counters`, to be summed by the caller). Square tiles are rendered in parallel; the result
+/// `counters`, to be summed by the caller; each item counts into a local copy first, so that
+/// threads never write to one cache line). Square tiles are rendered in parallel; the result
 /// does not depend on the thread count. Fills `mask` (if any); returns the counts.
 template <class Counters, class Colour>
 SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
@@ -295,9 +296,10 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
             parallel_items(control.threads, tile_count, [&](size_t t) {
                 if (cancelled()) return;
                 const PixelRect r = tile_of(t);
+                Counters c{};
                 for (int y = r.y0; y < r.y1; ++y)
-                    for (int x = r.x0; x < r.x1; ++x)
-                        out.at(x, y) = colour(x + 0.5f, y + 0.5f, counters[t]);
+                    for (int x = r.x0; x < r.x1; ++x) out.at(x, y) = colour(x + 0.5f, y + 0.5f, c);
+                counters[t] = c;
                 counts[t].samples = static_cast<uint64_t>(r.width()) * r.height();
                 report();
             });
@@ -309,6 +311,7 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                 const PixelRect tile = tile_of(t), region = g.region(tile);
                 const int s = g.s, stride = region.width() * s;
                 std::vector<Rgb>& buf = grid_scratch_for_this_thread();
+                Counters c{};
                 buf.resize(static_cast<size_t>(stride) * region.height() * s);
                 for (int j = region.y0; j < region.y1; ++j) {
                     for (int i = region.x0; i < region.x1; ++i) {
@@ -321,7 +324,7 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                                 float x, y;
                                 g.position(i, j, a, b, x, y);
                                 if (inside || g.needed(tile, x, y)) {
-                                    dst[a] = colour(x, y, counters[t]);
+                                    dst[a] = colour(x, y, c);
                                     ++counts[t].samples;
                                 } else {
                                     dst[a] = Rgb{0.0f};
@@ -330,6 +333,7 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                         }
                     }
                 }
+                counters[t] = c;
                 filter_tile(g, tile, region, buf.data(), out);
                 report();
             });
@@ -340,12 +344,14 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
             std::vector<Rgb> corners(static_cast<size_t>(width + 1) * (height + 1));
             parallel_items(control.threads, tile_count, [&](size_t t) {
                 if (cancelled()) return;
-                const PixelRect c = corner_rect(tile_of(t), width, height);
-                for (int y = c.y0; y < c.y1; ++y)
-                    for (int x = c.x0; x < c.x1; ++x)
+                const PixelRect r = corner_rect(tile_of(t), width, height);
+                Counters c{};
+                for (int y = r.y0; y < r.y1; ++y)
+                    for (int x = r.x0; x < r.x1; ++x)
                         corners[static_cast<size_t>(y) * (width + 1) + x] =
-                            colour(static_cast<float>(x), static_cast<float>(y), counters[t]);
-                counts[t].samples = static_cast<uint64_t>(c.width()) * c.height();
+                            colour(static_cast<float>(x), static_cast<float>(y), c);
+                counters[t] = c;
+                counts[t].samples = static_cast<uint64_t>(r.width()) * r.height();
                 report();
             });
             // Pass 2: refine the pixels whose corners differ.
@@ -353,7 +359,7 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
             const float inv_S = 1.0f / static_cast<float>(spec.lattice());
             parallel_items(control.threads, tile_count, [&](size_t t) {
                 if (cancelled()) return;
-                Counters& c = counters[tile_count + t];
+                Counters c{};
                 struct Fine {
                     Colour& fn;
                     Counters& c;
@@ -367,6 +373,7 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                 Fine fine{colour, c, inv_S};
                 refine_tile(spec, tile_of(t), corners.data(), fine, out, mask,
                             counts[tile_count + t]);
+                counters[tile_count + t] = c;
                 report();
             });
             break;
