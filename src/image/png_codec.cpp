@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <memory>
+#include <new>
 #include <vector>
 
 #include "image/image_codecs.h"
@@ -58,18 +60,23 @@ void read_bytes(png_structp png, png_bytep data, size_t n) {
     ctx.pos += n;
 }
 
-/// The PNG image data (what the IDAT chunks carry): one zlib stream of the rows, each
-/// prefixed by filter type 1 (Sub: every byte minus the one 3 to its left), deflated at level
-/// 3 in independent bands of kBandRows rows, in parallel. Every band but the last ends with a
-/// sync flush (on a byte boundary), so the bands joined make one deflate stream (as pigz
-/// does); the Adler-32 of the whole is combined from the bands'. The bytes depend only on the
-/// image, not on the number of threads. Empty on failure (zlib out of memory).
-std::string deflate_rows(const std::vector<png_byte>& data, size_t row_size, int height) {
+/// The PNG image data (what the IDAT chunks carry): one zlib stream of the image's rows,
+/// quantized by encode_8bit and each prefixed by filter type 1 (Sub: every byte minus the one
+/// 3 to its left), deflated at level 3 in independent bands of kBandRows rows, in parallel.
+/// Every band but the last ends with a sync flush (on a byte boundary), so the bands joined
+/// make one deflate stream (as pigz does); the Adler-32 of the whole is combined from the
+/// bands'. The bytes depend only on the image, not on the number of threads. Each band is
+/// quantized and filtered in a per-thread buffer, and only its compressed bytes are kept.
+/// Empty on failure (zlib out of memory).
+std::string deflate_rows(const Image& img, Encoding e) {
     constexpr int kBandRows = 64;
     constexpr int kLevel = 3;
+    const int height = img.height;
+    const size_t row_size = static_cast<size_t>(img.width) * 3;
     const int bands = (height + kBandRows - 1) / kBandRows;
     struct Band {
-        std::string bytes;
+        std::unique_ptr<Bytef[]> bytes;  // compressed; uninitialised beyond `size`
+        size_t size = 0;
         uLong adler = 1;
         size_t length = 0;  // filtered bytes
         bool ok = false;
@@ -77,13 +84,20 @@ std::string deflate_rows(const std::vector<png_byte>& data, size_t row_size, int
     std::vector<Band> out(static_cast<size_t>(bands));
     tbb::parallel_for(0, bands, [&](int b) {
         const int y0 = b * kBandRows, y1 = std::min(height, y0 + kBandRows);
-        std::vector<Bytef> filtered(static_cast<size_t>(y1 - y0) * (row_size + 1));
+        thread_local std::vector<Bytef> filtered, line;  // reused by the thread's bands
+        filtered.resize(static_cast<size_t>(y1 - y0) * (row_size + 1));
+        line.resize(row_size);
         Bytef* f = filtered.data();
         for (int y = y0; y < y1; ++y) {
-            const png_byte* row = data.data() + row_size * static_cast<size_t>(y);
+            const Rgb* px = &img.at(0, y);
+            for (int x = 0; x < img.width; ++x) {
+                line[3 * x + 0] = encode_8bit(px[x].x, e);
+                line[3 * x + 1] = encode_8bit(px[x].y, e);
+                line[3 * x + 2] = encode_8bit(px[x].z, e);
+            }
             *f++ = 1;  // Sub
             for (size_t k = 0; k < row_size; ++k) {
-                *f++ = static_cast<Bytef>(row[k] - (k >= 3 ? row[k - 3] : 0));
+                *f++ = static_cast<Bytef>(line[k] - (k >= 3 ? line[k - 3] : 0));
             }
         }
         Band& band = out[static_cast<size_t>(b)];
@@ -91,24 +105,32 @@ std::string deflate_rows(const std::vector<png_byte>& data, size_t row_size, int
         band.adler = adler32(1, filtered.data(), static_cast<uInt>(filtered.size()));
         z_stream z{};
         if (deflateInit2(&z, kLevel, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) return;
-        band.bytes.resize(deflateBound(&z, static_cast<uLong>(filtered.size())) + 16);
+        const size_t bound = deflateBound(&z, static_cast<uLong>(filtered.size())) + 16;
+        band.bytes.reset(new (std::nothrow) Bytef[bound]);
+        if (!band.bytes) {
+            deflateEnd(&z);
+            return;
+        }
         z.next_in = filtered.data();
         z.avail_in = static_cast<uInt>(filtered.size());
-        z.next_out = reinterpret_cast<Bytef*>(band.bytes.data());
-        z.avail_out = static_cast<uInt>(band.bytes.size());
+        z.next_out = band.bytes.get();
+        z.avail_out = static_cast<uInt>(bound);
         const int flush = b + 1 == bands ? Z_FINISH : Z_SYNC_FLUSH;
         const int status = deflate(&z, flush);
         band.ok = flush == Z_FINISH ? status == Z_STREAM_END : status == Z_OK && z.avail_in == 0;
-        band.bytes.resize(band.bytes.size() - z.avail_out);
+        band.size = bound - z.avail_out;
         deflateEnd(&z);
     });
     // zlib header: deflate, 32 KiB window, FLEVEL 1 (levels 2–5), FCHECK making it a multiple
     // of 31; then the bands; then the Adler-32 of all filtered bytes, big-endian.
+    size_t total = 2 + 4;
+    for (const Band& band : out) total += band.size;
     std::string stream = {'\x78', '\x5E'};
+    stream.reserve(total);
     uLong adler = 1;
     for (const Band& band : out) {
         if (!band.ok) return {};
-        stream += band.bytes;
+        stream.append(reinterpret_cast<const char*>(band.bytes.get()), band.size);
         adler = adler32_combine(adler, band.adler, static_cast<z_off_t>(band.length));
     }
     for (int shift = 24; shift >= 0; shift -= 8)
@@ -190,18 +212,7 @@ bool read_png_rows(PngReader& r, png_bytepp rows) {
 std::string encode_png(const Image& img, Encoding e) {
     // Quantize and compress first: no C++ allocation happens while libpng runs, except in
     // write_bytes.
-    const size_t row_size = static_cast<size_t>(img.width) * 3;
-    std::vector<png_byte> data(row_size * img.height);
-    tbb::parallel_for(0, img.height, [&](int y) {
-        png_bytep row = data.data() + row_size * y;
-        for (int x = 0; x < img.width; ++x) {
-            const Rgb& c = img.at(x, y);
-            row[3 * x + 0] = encode_8bit(c.x, e);
-            row[3 * x + 1] = encode_8bit(c.y, e);
-            row[3 * x + 2] = encode_8bit(c.z, e);
-        }
-    });
-    const std::string idat = deflate_rows(data, row_size, img.height);
+    const std::string idat = deflate_rows(img, e);
     if (idat.empty()) throw ImageError("PNG encoding failed: zlib could not compress the image");
     std::string out;
     out.reserve(idat.size() + 1024);
