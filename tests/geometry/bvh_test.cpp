@@ -125,6 +125,23 @@ ObjectDesc sphere(Vec3 c, float r, int material) {
     return o;
 }
 
+ObjectDesc box(Vec3 lo, Vec3 hi, int material) {
+    ObjectDesc o;
+    o.type = ShapeType::box;
+    o.min = lo;
+    o.max = hi;
+    o.material = material;
+    return o;
+}
+
+ObjectDesc plane(Vec3 point, int material) {
+    ObjectDesc o;
+    o.type = ShapeType::plane;
+    o.point = point;
+    o.material = material;
+    return o;
+}
+
 /// Random rays: from points in [−6, 6]³ in random directions; every fourth aimed exactly at a
 /// mesh vertex (where triangles meet and ties happen) and every eighth a segment (for shadows).
 struct RandomRays {
@@ -197,17 +214,8 @@ TEST(BvhEqualsBruteForce, RandomMeshesAndShapes) {
     Rng rng(1);
     std::vector<ObjectDesc> objects = {random_soup(rng, 300, 0), random_soup(rng, 150, 1),
                                        sphere({1, 1, 1}, 1.5f, 1), sphere({-2, 2, -1}, 0.7f, 0)};
-    ObjectDesc box;
-    box.type = ShapeType::box;
-    box.min = {2, -3, -3};
-    box.max = {3, -1, 0};
-    box.material = 2;
-    objects.push_back(box);
-    ObjectDesc plane;
-    plane.type = ShapeType::plane;
-    plane.point = {0, -5, 0};
-    plane.material = 2;
-    objects.push_back(plane);
+    objects.push_back(box({2, -3, -3}, {3, -1, 0}, 2));
+    objects.push_back(plane({0, -5, 0}, 2));
     expect_bvh_equals_brute_force(scene_with(objects), 100000);
 }
 
@@ -277,12 +285,7 @@ TEST(SmallScenes, ShapeByShapeEqualsTheBvhAndTestingEverything) {
     ObjectDesc ellipsoid = sphere({-2, 1, 1}, 1.0f, 1);
     ellipsoid.transform = scaling({1.5f, 0.5f, 1.0f});  // not a similarity: object space
     objects.push_back(ellipsoid);
-    ObjectDesc box;
-    box.type = ShapeType::box;
-    box.min = {1, -3, 1};
-    box.max = {3, -1, 2};
-    box.material = 2;
-    objects.push_back(box);
+    objects.push_back(box({1, -3, 1}, {3, -1, 2}, 2));
     ObjectDesc torus;
     torus.type = ShapeType::torus;
     torus.center = {-2, -2, -1};
@@ -290,11 +293,7 @@ TEST(SmallScenes, ShapeByShapeEqualsTheBvhAndTestingEverything) {
     torus.minor_radius = 0.4f;
     torus.material = 1;
     objects.push_back(torus);
-    ObjectDesc plane;
-    plane.type = ShapeType::plane;
-    plane.point = {0, -4, 0};
-    plane.material = 2;
-    objects.push_back(plane);
+    objects.push_back(plane({0, -4, 0}, 2));
     ASSERT_LE(objects.size(), 8u);
     const Scene direct = build_scene(scene_with(objects));
     objects.push_back(sphere({500, 500, 500}, 1.0f, 0));
