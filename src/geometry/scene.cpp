@@ -66,8 +66,7 @@ void build_bvh(Scene& scene) {
     for (size_t i = 0; i < scene.shapes.size() && scene.direct; ++i) {
         const Shape& s = scene.shapes[i];
         if (s.world_form && s.type == ShapeType::sphere) {
-            scene.sphere_lane[i] =
-                add_to_sphere_groups(scene.sphere_groups, s, static_cast<uint32_t>(i));
+            scene.sphere_lane[i] = add_to_sphere_groups(scene.sphere_groups, s);
         }
     }
     scene.bvh_build_seconds =

@@ -33,7 +33,8 @@ struct Scene {
     Bvh8 bvh;
     std::vector<BvhPrim> bvh_prims;   ///< in the BVH's leaf order: slot i is bvh_prims[i]
     std::vector<uint32_t> unbounded;  ///< shapes outside the BVH (planes), in scene order
-    bool has_bvh = false;  ///< build_bvh() ran: queries use the BVH when render.accel is bvh
+    bool has_bvh = false;  ///< build_bvh() ran: with render.accel bvh, queries use the BVH or
+                           ///< (`direct`) test the few shapes in order
     // A scene of at most kDirectShapes shapes and no mesh, which one 8-wide node would hold, is
     // tested shape by shape instead (`direct`), its spheres in world form four at a time.
     static constexpr size_t kDirectShapes = 8;

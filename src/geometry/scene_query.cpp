@@ -1,5 +1,6 @@
-// Scene ray queries: BVH traversal (render.accel = bvh) or every shape and triangle in order
-// (none), with one rule for ties so both give the same answers.
+// Scene ray queries: BVH traversal (render.accel = bvh), every shape in order for a small
+// scene without meshes (bvh, Scene::direct), or every shape and triangle in order (none), with
+// one rule for ties so all give the same answers.
 #include "geometry/scene_query.h"
 
 #include <algorithm>
@@ -266,11 +267,11 @@ bool nearest_direct(const Scene& scene, const Ray& r, float t_min, float t_max, 
     Hit best;
     for (size_t k = 0; k < scene.shapes.size(); ++k) {
         const Shape& s = scene.shapes[k];
-        ++counters.primitive;
         if (const int lane = scene.sphere_lane[k]; lane >= 0) {
             const SphereGroupRoots& g = roots.group[lane / SphereGroup::kLanes];
             const unsigned bit = 1u << (lane % SphereGroup::kLanes);
             if (!(g.slow & bit)) {  // intersect()'s choice between the roots
+                ++counters.primitive;
                 if (!(g.hit & bit)) continue;
                 const float t0 = g.t0[lane % SphereGroup::kLanes];
                 const float t = t0 > t_min ? t0 : g.t1[lane % SphereGroup::kLanes];
@@ -290,6 +291,7 @@ bool nearest_direct(const Scene& scene, const Ray& r, float t_min, float t_max, 
             if (!hit_bounds(scene.bounds[k], r, inv_dir, t_min, bvh_detail::with_margin(t_max)))
                 continue;
         }
+        ++counters.primitive;
         Hit h;
         if (intersect(s, r, t_min, t_max, h)) {
             best = h;

@@ -1,6 +1,8 @@
 // Ray queries on a whole scene: the nearest hit (camera, reflected and refracted rays) and the
 // transmittance of a segment (shadow rays). With render.accel = bvh they traverse the scene's
-// BVH (planes apart); with none every shape, and every mesh triangle, is tested.
+// BVH (planes apart), except in a scene of at most 8 shapes and no mesh (Scene::direct), whose
+// shapes are tested in order, spheres four at a time; with none every shape, and every mesh
+// triangle, is tested.
 //
 // Shooting rays at one mesh directly (e.g. a benchmark):
 //     std::vector<std::string> warnings;

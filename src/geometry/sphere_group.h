@@ -20,14 +20,13 @@
 namespace luz {
 
 /// Up to four spheres in world form (Shape::world_form): centres and squared radii by lane.
-/// Unused lanes repeat lane 0 and are never reported.
+/// Unused lanes repeat the sphere added last and are never reported.
 struct SphereGroup {
     static constexpr int kLanes = 4;
     float cx[kLanes], cy[kLanes], cz[kLanes];
     float rr[kLanes];  ///< radius · radius, as world_sphere_roots() rounds it
     float radius[kLanes];
-    uint32_t shape[kLanes]{};  ///< the spheres' indices in Scene::shapes
-    int count = 0;             ///< lanes in use
+    int count = 0;  ///< lanes in use
 };
 
 /// One ray against one group: for lane k < count, bit k of `hit` is set where
@@ -38,9 +37,9 @@ struct SphereGroupRoots {
     unsigned hit = 0, slow = 0;
 };
 
-/// Adds sphere shape `index` (in world form) to the last group of `groups`, or to a new one;
-/// returns its lane number over all groups (4·group + lane).
-inline int add_to_sphere_groups(std::vector<SphereGroup>& groups, const Shape& s, uint32_t index) {
+/// Adds sphere shape s (in world form) to the last group of `groups`, or to a new one; returns
+/// its lane number over all groups (4·group + lane).
+inline int add_to_sphere_groups(std::vector<SphereGroup>& groups, const Shape& s) {
     if (groups.empty() || groups.back().count == SphereGroup::kLanes) groups.emplace_back();
     SphereGroup& g = groups.back();
     for (int k = g.count; k < SphereGroup::kLanes; ++k) {  // this lane and the unused ones
@@ -49,7 +48,6 @@ inline int add_to_sphere_groups(std::vector<SphereGroup>& groups, const Shape& s
         g.cz[k] = s.centre.z;
         g.rr[k] = s.radius * s.radius;
         g.radius[k] = s.radius;
-        g.shape[k] = index;
     }
     const int lane = g.count++;
     return static_cast<int>(groups.size() - 1) * SphereGroup::kLanes + lane;

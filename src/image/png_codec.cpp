@@ -84,7 +84,8 @@ std::string deflate_rows(const Image& img, Encoding e) {
     std::vector<Band> out(static_cast<size_t>(bands));
     tbb::parallel_for(0, bands, [&](int b) {
         const int y0 = b * kBandRows, y1 = std::min(height, y0 + kBandRows);
-        thread_local std::vector<Bytef> filtered, line;  // reused by the thread's bands
+        // Reused by the thread's bands and kept until it ends (~(64 + 1)·3·width bytes).
+        thread_local std::vector<Bytef> filtered, line;
         filtered.resize(static_cast<size_t>(y1 - y0) * (row_size + 1));
         line.resize(row_size);
         Bytef* f = filtered.data();

@@ -202,7 +202,8 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, fl
 
 Rgb RayTracer::sample(float px, float py, TraceCounters& counters) const {
     float distance;
-    if (counters.primary++ % kTimedSampleEvery != 0) {
+    // The last of every kTimedSampleEvery samples of a work item (not its first, cold one).
+    if (++counters.primary % kTimedSampleEvery != 0) {
         return trace_impl<false>(camera_.ray(px, py), 0, counters, distance, nullptr);
     }
     // A timed sample: the whole of it, and its scene queries (IntersectCounters::timing).

@@ -277,9 +277,10 @@ TEST(BvhEqualsBruteForce, ShadowProductsDoNotDependOnTheOrderOfCrossings) {
 
 TEST(SmallScenes, ShapeByShapeEqualsTheBvhAndTestingEverything) {
     // At most 8 shapes and no mesh: nearest_hit and transmittance test shape by shape (spheres
-    // in world form without their box) instead of traversing the BVH. A ninth shape far away
-    // makes the same scene take the BVH; every answer must be the same bits in all three ways,
-    // including ties: two coincident spheres of different materials (the lower one wins).
+    // in world form without their box) instead of traversing the BVH. Spheres far away, up to
+    // a ninth shape, make the same scene take the BVH; every answer must be the same bits in all
+    // three ways, including ties: two coincident spheres of different materials (the lower one
+    // wins).
     std::vector<ObjectDesc> objects = {sphere({0, 0, 0}, 1.5f, 1), sphere({0, 0, 0}, 1.5f, 2),
                                        sphere({2, 1, -1}, 0.8f, 0)};
     ObjectDesc ellipsoid = sphere({-2, 1, 1}, 1.0f, 1);
@@ -296,19 +297,27 @@ TEST(SmallScenes, ShapeByShapeEqualsTheBvhAndTestingEverything) {
     objects.push_back(plane({0, -4, 0}, 2));
     ASSERT_LE(objects.size(), 8u);
     const Scene direct = build_scene(scene_with(objects));
-    objects.push_back(sphere({500, 500, 500}, 1.0f, 0));
+    while (objects.size() <= Scene::kDirectShapes)
+        objects.push_back(sphere({500, 500, 500}, 1.0f, 0));
     const Scene bvh = build_scene(scene_with(objects));
     Scene all = direct;
     all.desc.render.accel = Accel::none;
 
     RandomRays gen;
     IntersectCounters cd, cb, ca;
-    int hits = 0, ties = 0, partial = 0, mismatches = 0;
+    int hits = 0, ties = 0, partial = 0, mismatches = 0, slow = 0;
+    ASSERT_TRUE(direct.direct);
+    ASSERT_FALSE(bvh.direct);
+    ASSERT_EQ(direct.sphere_groups.size(), 1u);  // the three spheres in world form
     for (int k = 0; k < 50000; ++k) {
         float t_max;
         Ray r = gen.next(k, t_max);
-        if (k % 3 == 2) {  // from (1e-4 off) the first sphere's surface, as spawned rays start
-            r.origin = random_direction(gen.rng) * (1.5f + ((k & 8) ? 1e-4f : -1e-4f));
+        if (k % 3 == 2) {
+            // from the first sphere's surface: 1e-4 off it, as spawned rays start, or on it,
+            // where its lane hands over to the scalar test's double path
+            const float offset = (k & 8) ? 1e-4f : (k & 16) ? -1e-4f : 0.0f;
+            r.origin = random_direction(gen.rng) * (1.5f + offset);
+            slow += sphere_group_roots(direct.sphere_groups[0], r).slow != 0;
         }
         Hit h[3];
         const bool f[3] = {nearest_hit(direct, r, 0.0f, t_max, h[0], cd),
@@ -336,6 +345,7 @@ TEST(SmallScenes, ShapeByShapeEqualsTheBvhAndTestingEverything) {
     EXPECT_GT(hits, 10000);
     EXPECT_GT(ties, 1000);
     EXPECT_GT(partial, 1000);
+    EXPECT_GT(slow, 1000);
     // The direct path tested no box of a world-form sphere; the BVH and `none` did.
     EXPECT_LT(cd.bounds, ca.bounds / 2);
 }
