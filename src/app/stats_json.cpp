@@ -67,7 +67,7 @@ nlohmann::json stats_to_json(const RenderStats& s, const SceneDesc& desc) {
              {"sampled_seconds", s.sampled_seconds},
              {"intersection_seconds", s.intersect_sampled_seconds},
              {"method",
-              "timers around every nearest-hit and shadow-ray query of every 64th primary "
+              "timers around every nearest-hit and shadow-ray query of every 256th primary "
               "sample, and around those whole samples; share = query time / sample time "
               "(null: no rays traced)"}}},
         {"peak_memory_bytes", s.peak_memory_bytes},

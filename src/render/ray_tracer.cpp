@@ -202,8 +202,9 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, fl
 
 Rgb RayTracer::sample(float px, float py, TraceCounters& counters) const {
     float distance;
-    // The last of every kTimedSampleEvery samples of a work item (not its first, cold one).
-    if (++counters.primary % kTimedSampleEvery != 0) {
+    // A work item's first sample and every kTimedSampleEvery-th after it: every render that
+    // traces a ray times at least one.
+    if (counters.primary++ % kTimedSampleEvery != 0) {
         return trace_impl<false>(camera_.ray(px, py), 0, counters, distance, nullptr);
     }
     // A timed sample: the whole of it, and its scene queries (IntersectCounters::timing).
