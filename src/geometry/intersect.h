@@ -74,6 +74,18 @@ inline float world_plane_root(const Shape& s, const Ray& r) {
     return static_cast<float>(double(s.offset) - n_o) / dot(s.normal, r.direction);
 }
 
+/// The nearest of the roots t0 ≤ t1 (of a sphere or a plane in world form) in the open interval
+/// (t_min, t_max), in t; false if neither lies there (NaN roots never do).
+inline bool nearest_root(float t0, float t1, float t_min, float t_max, float& t) {
+    t = t0 > t_min ? t0 : t1;
+    return t > t_min && t < t_max;
+}
+
+/// How many of the roots t0, t1 lie in the open interval (t_min, t_max) (NaN roots never do).
+inline uint32_t roots_within(float t0, float t1, float t_min, float t_max) {
+    return (t0 > t_min && t0 < t_max ? 1 : 0) + (t1 > t_min && t1 < t_max ? 1 : 0);
+}
+
 /// Nearest hit of world ray r with shape s in the open interval (t_min, t_max). Spheres under a
 /// similarity and planes are hit in world space (Shape::world_form); the other shapes in
 /// object space (transform.to_object, direction not normalised), so t is the same in both
@@ -87,8 +99,8 @@ inline bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hi
     } else {
         t0 = t1 = world_plane_root(s, r);
     }
-    const float t = t0 > t_min ? t0 : t1;  // NaN fails below
-    if (!(t > t_min && t < t_max)) return false;
+    float t;
+    if (!nearest_root(t0, t1, t_min, t_max, t)) return false;
     hit.t = t;
     hit.u = hit.v = 0;
     hit.part = part_side;
@@ -112,7 +124,7 @@ inline uint32_t count_crossings(const Shape& s, const Ray& r, float t_min, float
         t0 = world_plane_root(s, r);
         t1 = std::numeric_limits<float>::quiet_NaN();  // one root only
     }
-    const uint32_t n = (t0 > t_min && t0 < t_max ? 1 : 0) + (t1 > t_min && t1 < t_max ? 1 : 0);
+    const uint32_t n = roots_within(t0, t1, t_min, t_max);
     return first_only && n > 1 ? 1 : n;
 }
 

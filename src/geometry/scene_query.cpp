@@ -172,18 +172,23 @@ class Crossings {
     float overflow_ = 1.0f;  // beyond kMax materials: multiplied as found
 };
 
+/// Records n > 0 crossings of a surface of `material`; false if it is opaque (it blocks).
+bool add_crossings(const Scene& scene, int material, uint32_t n, Crossings& crossings) {
+    const float transparency = scene.desc.materials[material].transparency;
+    if (transparency <= 0) return false;
+    crossings.add(material, n, transparency);
+    return true;
+}
+
 /// Every crossing of shape i (not a mesh) with r in (t_min, t_max); false on an opaque one.
 /// Inlined: it is the inner loop of every shadow ray.
 [[gnu::always_inline]] inline bool cross_shape(const Scene& scene, uint32_t i, const Ray& r,
                                                float t_min, float t_max, Crossings& crossings,
                                                IntersectCounters& counters) {
     const Shape& s = scene.shapes[i];
-    const float transparency = scene.desc.materials[s.material].transparency;
-    const uint32_t n = count_crossings(s, r, t_min, t_max, transparency <= 0, counters.primitive);
-    if (n == 0) return true;
-    if (transparency <= 0) return false;
-    crossings.add(s.material, n, transparency);
-    return true;
+    const bool opaque = scene.desc.materials[s.material].transparency <= 0;
+    const uint32_t n = count_crossings(s, r, t_min, t_max, opaque, counters.primitive);
+    return n == 0 || add_crossings(scene, s.material, n, crossings);
 }
 
 /// Triangle `tri` of mesh shape i; false if it blocks (opaque).
@@ -193,11 +198,7 @@ bool cross_triangle(const Scene& scene, const WatertightRay& w, const Vec3& p0, 
     ++counters.primitive;
     float t, b1, b2;
     if (!intersect_triangle(w, p0, p1, p2, t_min, t_max, t, b1, b2)) return true;
-    const int material = scene.shapes[i].mesh->materials[tri];
-    const float transparency = scene.desc.materials[material].transparency;
-    if (transparency <= 0) return false;
-    crossings.add(material, 1, transparency);
-    return true;
+    return add_crossings(scene, scene.shapes[i].mesh->materials[tri], 1, crossings);
 }
 
 float transmittance_bvh(const Scene& scene, const Ray& r, float t_min, float t_max,
@@ -248,9 +249,33 @@ float transmittance_all(const Scene& scene, const Ray& r, float t_min, float t_m
 /// The roots of r with every sphere group of a direct scene, at once.
 struct GroupRoots {
     SphereGroupRoots group[Scene::kDirectShapes / SphereGroup::kLanes];
-    explicit GroupRoots(const Scene& scene, const Ray& r) {
+    GroupRoots(const Scene& scene, const Ray& r) {
         for (size_t g = 0; g < scene.sphere_groups.size(); ++g)
             group[g] = sphere_group_roots(scene.sphere_groups[g], r);
+    }
+    /// The answer of sphere lane `lane` (Scene::sphere_lane): whether it hits, and its roots;
+    /// false if the lane needs the scalar test (its double path) instead.
+    bool answer(int lane, bool& hit, float& t0, float& t1) const {
+        const SphereGroupRoots& g = group[lane / SphereGroup::kLanes];
+        const int k = lane % SphereGroup::kLanes;
+        if (g.slow & (1u << k)) return false;
+        hit = (g.hit & (1u << k)) != 0;
+        t0 = g.t0[k];
+        t1 = g.t1[k];
+        return true;
+    }
+};
+
+/// Box tests of one ray, its inverse direction computed at the first.
+struct LazyBoxTest {
+    const Ray& r;
+    Vec3 inv_dir{0.0f};
+    bool ready = false;
+    bool hit(const Bounds3& b, float t_min, float t_max, IntersectCounters& counters) {
+        if (!ready) inv_dir = inverse_direction(r.direction);
+        ready = true;
+        ++counters.bounds;
+        return hit_bounds(b, r, inv_dir, t_min, t_max);
     }
 };
 
@@ -261,36 +286,25 @@ struct GroupRoots {
 bool nearest_direct(const Scene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
                     IntersectCounters& counters) {
     const GroupRoots roots(scene, r);
-    Vec3 inv_dir{0.0f};
-    bool have_inv_dir = false;
+    LazyBoxTest boxes{r};
     int nearest = -1;
     Hit best;
     for (size_t k = 0; k < scene.shapes.size(); ++k) {
         const Shape& s = scene.shapes[k];
-        if (const int lane = scene.sphere_lane[k]; lane >= 0) {
-            const SphereGroupRoots& g = roots.group[lane / SphereGroup::kLanes];
-            const unsigned bit = 1u << (lane % SphereGroup::kLanes);
-            if (!(g.slow & bit)) {  // intersect()'s choice between the roots
-                ++counters.primitive;
-                if (!(g.hit & bit)) continue;
-                const float t0 = g.t0[lane % SphereGroup::kLanes];
-                const float t = t0 > t_min ? t0 : g.t1[lane % SphereGroup::kLanes];
-                if (t > t_min && t < t_max) {
-                    best.t = t;
-                    best.u = best.v = 0;
-                    best.part = part_side;
-                    t_max = t;
-                    nearest = static_cast<int>(k);
-                }
-                continue;
+        bool met;
+        float t0, t1, t;
+        if (const int lane = scene.sphere_lane[k]; lane >= 0 && roots.answer(lane, met, t0, t1)) {
+            ++counters.primitive;
+            if (met && nearest_root(t0, t1, t_min, t_max, t)) {  // as intersect() chooses
+                best = Hit{};
+                best.t = t_max = t;
+                nearest = static_cast<int>(k);
             }
-        } else if (!s.world_form && is_bounded(s)) {
-            if (!have_inv_dir) inv_dir = inverse_direction(r.direction);
-            have_inv_dir = true;
-            ++counters.bounds;
-            if (!hit_bounds(scene.bounds[k], r, inv_dir, t_min, bvh_detail::with_margin(t_max)))
-                continue;
+            continue;
         }
+        if (!s.world_form && is_bounded(s) &&
+            !boxes.hit(scene.bounds[k], t_min, bvh_detail::with_margin(t_max), counters))
+            continue;
         ++counters.primitive;
         Hit h;
         if (intersect(s, r, t_min, t_max, h)) {
@@ -309,35 +323,22 @@ bool nearest_direct(const Scene& scene, const Ray& r, float t_min, float t_max, 
 float transmittance_direct(const Scene& scene, const Ray& r, float t_min, float t_max,
                            IntersectCounters& counters) {
     const GroupRoots roots(scene, r);
-    Vec3 inv_dir{0.0f};
-    bool have_inv_dir = false;
+    LazyBoxTest boxes{r};
     Crossings crossings;
     for (size_t k = 0; k < scene.shapes.size(); ++k) {
         const Shape& s = scene.shapes[k];
-        if (const int lane = scene.sphere_lane[k]; lane >= 0) {
-            const SphereGroupRoots& g = roots.group[lane / SphereGroup::kLanes];
-            const unsigned bit = 1u << (lane % SphereGroup::kLanes);
-            if (!(g.slow & bit)) {  // count_crossings() of the roots
-                ++counters.primitive;
-                if (!(g.hit & bit)) continue;
-                const float t0 = g.t0[lane % SphereGroup::kLanes];
-                const float t1 = g.t1[lane % SphereGroup::kLanes];
-                const uint32_t n =
-                    (t0 > t_min && t0 < t_max ? 1 : 0) + (t1 > t_min && t1 < t_max ? 1 : 0);
-                if (n == 0) continue;
-                const float transparency = scene.desc.materials[s.material].transparency;
-                if (transparency <= 0) return 0.0f;
-                crossings.add(s.material, n, transparency);
-                continue;
-            }
-        } else if (!s.world_form && is_bounded(s)) {
-            if (!have_inv_dir) inv_dir = inverse_direction(r.direction);
-            have_inv_dir = true;
-            ++counters.bounds;
-            if (!hit_bounds(scene.bounds[k], r, inv_dir, t_min, t_max)) continue;
+        const uint32_t i = static_cast<uint32_t>(k);
+        bool met;
+        float t0, t1;
+        if (const int lane = scene.sphere_lane[k]; lane >= 0 && roots.answer(lane, met, t0, t1)) {
+            ++counters.primitive;  // as count_crossings() counts
+            const uint32_t n = met ? roots_within(t0, t1, t_min, t_max) : 0;
+            if (n > 0 && !add_crossings(scene, s.material, n, crossings)) return 0.0f;
+            continue;
         }
-        if (!cross_shape(scene, static_cast<uint32_t>(k), r, t_min, t_max, crossings, counters))
-            return 0.0f;
+        if (!s.world_form && is_bounded(s) && !boxes.hit(scene.bounds[k], t_min, t_max, counters))
+            continue;
+        if (!cross_shape(scene, i, r, t_min, t_max, crossings, counters)) return 0.0f;
     }
     return crossings.product();
 }

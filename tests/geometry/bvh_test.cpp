@@ -287,11 +287,7 @@ TEST(SmallScenes, ShapeByShapeEqualsTheBvhAndTestingEverything) {
     ellipsoid.transform = scaling({1.5f, 0.5f, 1.0f});  // not a similarity: object space
     objects.push_back(ellipsoid);
     objects.push_back(box({1, -3, 1}, {3, -1, 2}, 2));
-    ObjectDesc torus;
-    torus.type = ShapeType::torus;
-    torus.center = {-2, -2, -1};
-    torus.major_radius = 1.2f;
-    torus.minor_radius = 0.4f;
+    ObjectDesc torus = test::torus_desc();
     torus.material = 1;
     objects.push_back(torus);
     objects.push_back(plane({0, -4, 0}, 2));
