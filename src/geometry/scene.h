@@ -55,7 +55,8 @@ struct Scene {
 Scene build_scene(SceneDesc desc);
 
 /// (Re)builds scene.bvh over the scene's shapes and mesh triangles (binned SAH, bvh.h, then
-/// 8-wide, wide_bvh.h) and times it in bvh_build_seconds.
+/// 8-wide, wide_bvh.h) and times it in bvh_build_seconds; for a small scene without meshes
+/// also sets `direct` and groups its spheres (the BVH is built all the same, and unused).
 void build_bvh(Scene& scene);
 
 }  // namespace luz
