@@ -383,9 +383,9 @@ struct EmbreeAccel {
     }
 };
 
-/// luz's scene query (what the renderer calls): nearest_hit on a Scene holding the mesh.
+/// luz's scene query (what the renderer calls): nearest_hit on a BuiltScene holding the mesh.
 struct LuzScene {
-    Scene scene;
+    BuiltScene scene;
 
     void trace(const std::vector<Ray>& rays, std::vector<Result>& out, int threads) const {
         parallel_chunks(rays.size(), threads, [&](size_t begin, size_t end) {
@@ -553,7 +553,7 @@ void run_mesh(const std::string& path, const Options& opt, std::vector<Row>& row
     if (opt.scene) {
         SceneDesc desc;
         desc.render.pipeline = Pipeline::raytrace;
-        desc.render.accel = Accel::bvh;
+        desc.geometry.accel = Accel::bvh;
         desc.materials.resize(1);
         desc.objects = {o};
         scene = std::make_unique<LuzScene>(LuzScene{build_scene(desc)});

@@ -16,7 +16,7 @@ using namespace luz;
 
 void trace_whitted(benchmark::State& state, const char* pipeline) {
     const int width = static_cast<int>(state.range(0)), height = width * 3 / 4;
-    const Scene scene = build_scene(
+    const BuiltScene scene = build_scene(
         load_scene("demo:whitted", {{"render.pipeline", std::string("\"") + pipeline + "\""},
                                     {"image.width", std::to_string(width)},
                                     {"image.height", std::to_string(height)}}));

@@ -76,7 +76,7 @@ struct Options {
 
 /// The benchmark scene: one torus seen at 45° from its axis, filling most of a 1024² image,
 /// orthographic camera, one white point light, phong.
-Scene torus_scene(int level) {
+BuiltScene torus_scene(int level) {
     SceneDesc d;
     d.name = "bench_torus";
     d.source = "zbuffer_vs_llvmpipe";
@@ -90,7 +90,7 @@ Scene torus_scene(int level) {
     d.camera.view_height = 3.0f;
     d.render.pipeline = Pipeline::zbuffer;
     d.render.model = Model::phong;
-    d.render.tessellation = level;
+    d.geometry.tessellation = level;
     d.ambient = Rgb{1.0f};
     d.attenuation_k = 1.0f;
     d.lights = {Light{{4, 5, 8}, Rgb{12.0f}, 0.0f}};
@@ -301,7 +301,7 @@ GLuint compile(const Gl& gl, GLenum type, const char* source) {
 /// prints the results on standard output and writes the RGBA8 image (rows top to bottom) to
 /// `image_path`.
 int llvmpipe_child(int level, const std::string& image_path, const Options& opt) {
-    const Scene scene = torus_scene(level);
+    const BuiltScene scene = torus_scene(level);
     const ZbufferGeometry geometry = prepare_zbuffer(scene);
     const TriangleMesh& mesh = geometry.mesh;
     static_assert(sizeof(Vec3) == 3 * sizeof(float));
@@ -589,7 +589,7 @@ class LlvmpipeChild {
 // luz
 
 /// One luz frame of prepared geometry on `threads` threads, into `out`.
-std::function<void()> luz_frame(const Scene& scene, const ZbufferGeometry& g, int threads,
+std::function<void()> luz_frame(const BuiltScene& scene, const ZbufferGeometry& g, int threads,
                                 Image& out) {
     return [&scene, &g, threads, &out] {
         RenderControl control;
@@ -714,21 +714,21 @@ struct Breakdown {
 };
 
 Breakdown luz_breakdown(int level, const Options& opt) {
-    const Scene full = torus_scene(level);
+    const BuiltScene full = torus_scene(level);
     const ZbufferGeometry g = prepare_zbuffer(full);  // the same mesh for every variant
-    Scene behind = full;
+    BuiltScene behind = full;
     behind.desc.camera.look_at = {0, 0, 20};  // looking along +z from z = 10: torus behind
-    Scene offscreen = full;
+    BuiltScene offscreen = full;
     offscreen.desc.camera.position.x -= 2.5f * full.desc.camera.view_height;
     offscreen.desc.camera.look_at.x -= 2.5f * full.desc.camera.view_height;
-    Scene tiny = full;
+    BuiltScene tiny = full;
     tiny.desc.camera.view_height *= 64.0f;
-    Scene unlit = full;
+    BuiltScene unlit = full;
     unlit.desc.lights.clear();
     Image out;
     std::vector<std::function<Batch(int)>> configs;
-    for (const Scene* s :
-         std::initializer_list<const Scene*>{&behind, &offscreen, &tiny, &unlit, &full})
+    for (const BuiltScene* s :
+         std::initializer_list<const BuiltScene*>{&behind, &offscreen, &tiny, &unlit, &full})
         configs.push_back([&, s](int k) { return run_batch(luz_frame(*s, g, 1, out), k); });
     const std::vector<Timing> t = side_by_side(configs, opt);
     return {t[0], t[1], t[2], t[3], t[4]};
@@ -813,7 +813,7 @@ int run(int argc, char** argv) {
     if (child_level > 0) return llvmpipe_child(child_level, child_image, opt);
 
     if (opt.profile_level > 0) {  // a few luz frames and nothing else
-        const Scene scene = torus_scene(opt.profile_level);
+        const BuiltScene scene = torus_scene(opt.profile_level);
         const ZbufferGeometry g = prepare_zbuffer(scene);
         RenderControl control;
         control.threads = opt.profile_threads;
@@ -846,7 +846,7 @@ int run(int argc, char** argv) {
     for (const BenchSize& size : opt.sizes) {
         Row row;
         row.size = size;
-        const Scene scene = torus_scene(size.level);
+        const BuiltScene scene = torus_scene(size.level);
         const ZbufferGeometry g = prepare_zbuffer(scene);
         row.triangles = g.mesh.triangle_count();
         const uint64_t hash = mesh_hash(g.mesh);

@@ -6,7 +6,7 @@
 
 namespace luz {
 
-void add_render_options(CLI::App& cmd, RenderOptions& o) {
+void add_render_options(CLI::App& cmd, RenderArgs& o) {
     cmd.add_option("SCENE", o.scene, "scene file, or demo:NAME (see `luz scenes`)")->required();
     cmd.add_option("-o,--output", o.output,
                    "output image; the extension picks the format: .png .ppm .pfm .exr "
@@ -51,7 +51,7 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
         ->transform(CLI::AsSizeValue(false));
 }
 
-std::vector<Override> overrides_of(const RenderOptions& o) {
+std::vector<Override> overrides_of(const RenderArgs& o) {
     std::vector<Override> out;
     for (const std::string& s : o.sets) out.push_back(parse_set(s));
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene_loader.h"
+#include "luz/scene.h"
 
 namespace CLI {
 class App;
@@ -14,9 +14,9 @@ class App;
 
 namespace luz {
 
-/// Everything `luz render` was given. Scene-overriding values are kept as the user typed them
+/// Everything `luz render` was given. BuiltScene-overriding values are kept as the user typed them
 /// and validated by the scene loader, so that every bad value is reported the same way.
-struct RenderOptions {
+struct RenderArgs {
     std::string scene;   ///< a file path or demo:NAME
     std::string output;  ///< empty: the scene's name + ".png"
     std::optional<std::string> pipeline, model, width, height, max_depth, aa, samples, threshold;
@@ -29,10 +29,10 @@ struct RenderOptions {
 };
 
 /// Declares the render options on `cmd`, storing into `o`.
-void add_render_options(CLI::App& cmd, RenderOptions& o);
+void add_render_options(CLI::App& cmd, RenderArgs& o);
 
 /// The overrides for the loader: the --set ones in order, then one per scene-overriding
 /// option (origin = the option's name). Throws InputError for a malformed --set.
-std::vector<Override> overrides_of(const RenderOptions& o);
+std::vector<Override> overrides_of(const RenderArgs& o);
 
 }  // namespace luz

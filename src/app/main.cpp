@@ -6,12 +6,10 @@
 #include <string>
 
 #include "app/cli_options.h"
-#include "app/list_commands.h"
 #include "app/render_command.h"
 #include "app/signals.h"
 #include "app/view_command.h"
-#include "image/image_io.h"
-#include "scene/input_error.h"
+#include "luz/luz.h"
 
 #ifndef LUZ_VERSION
 #define LUZ_VERSION "0.0.0"
@@ -42,7 +40,7 @@ int run(int argc, char** argv) {
     app.set_version_flag("--version", std::string("luz ") + LUZ_VERSION);
     app.require_subcommand(1);
 
-    luz::RenderOptions render_options;
+    luz::RenderArgs render_options;
     CLI::App* render = app.add_subcommand("render", "render a scene to an image file");
     luz::add_render_options(*render, render_options);
 

@@ -7,6 +7,6 @@ namespace luz {
 
 /// Runs `luz render` with `o`; returns 0 on success. Bad input throws InputError (exit 2),
 /// anything else std::exception (exit 1); on failure no output file is left behind.
-int run_render(const RenderOptions& o);
+int run_render(const RenderArgs& o);
 
 }  // namespace luz

@@ -7,22 +7,23 @@
 
 namespace luz {
 
-Scene build_scene(SceneDesc desc) {
-    Scene scene;
+BuiltScene build_scene(const SceneDesc& desc) {
+    BuiltScene scene;
+    scene.geometry = desc.geometry;
+    scene.material_count = desc.materials.size();
     scene.shapes.reserve(desc.objects.size());
     for (size_t i = 0; i < desc.objects.size(); ++i) {
         scene.shapes.push_back(make_shape(desc.objects[i], static_cast<int>(i)));
         scene.bounds.push_back(bounds(scene.shapes.back()));
         if (const auto& m = scene.shapes.back().mesh) scene.mesh_triangles += m->triangle_count();
     }
-    scene.desc = std::move(desc);
-    if (scene.desc.render.accel == Accel::bvh && scene.desc.render.pipeline != Pipeline::zbuffer) {
+    if (desc.geometry.accel == Accel::bvh && desc.render.pipeline != Pipeline::zbuffer) {
         build_bvh(scene);
     }
     return scene;
 }
 
-void build_bvh(Scene& scene) {
+void build_bvh(BuiltScene& scene) {
     const auto start = std::chrono::steady_clock::now();
     // The primitives: every bounded shape, except that a mesh gives its triangles instead.
     std::vector<BvhPrim> prims;
@@ -60,7 +61,7 @@ void build_bvh(Scene& scene) {
     for (uint32_t id : order) in_order.push_back(prims[id]);
     scene.bvh_prims = std::move(in_order);
     scene.has_bvh = true;
-    scene.direct = scene.mesh_triangles == 0 && scene.shapes.size() <= Scene::kDirectShapes;
+    scene.direct = scene.mesh_triangles == 0 && scene.shapes.size() <= BuiltScene::kDirectShapes;
     scene.sphere_groups.clear();
     scene.sphere_lane.assign(scene.shapes.size(), -1);
     for (size_t i = 0; i < scene.shapes.size() && scene.direct; ++i) {

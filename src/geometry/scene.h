@@ -1,4 +1,4 @@
-// Scene: the runtime scene built once from a SceneDesc; it never changes while rendering.
+// BuiltScene: the runtime scene built once from a SceneDesc; it never changes while rendering.
 #pragma once
 
 #include <cstdint>
@@ -15,14 +15,17 @@ namespace luz {
 /// world vertices copied here (so a leaf's triangles lie together in memory).
 struct BvhPrim {
     Vec3 p0, p1, p2;    ///< the triangle's vertices (mesh triangles only)
-    uint32_t shape;     ///< index into Scene::shapes
+    uint32_t shape;     ///< index into BuiltScene::shapes
     uint32_t triangle;  ///< the mesh's triangle, or kNotTriangle for a whole shape
 
     static constexpr uint32_t kNotTriangle = 0xFFFFFFFFu;
 };
 
-struct Scene {
-    SceneDesc desc;               ///< settings, lights, materials
+/// The scene's geometry as a render needs it: shapes, bounds, BVH. Settings (camera, lights,
+/// material constants …) are not part of it: they are given to each render.
+struct BuiltScene {
+    GeometryDesc geometry;        ///< tessellation and accel, as built
+    size_t material_count = 0;    ///< materials the objects may refer to (SceneDesc::materials)
     std::vector<Shape> shapes;    ///< one per object, in the scene's order
     std::vector<Bounds3> bounds;  ///< world bounds of each shape (infinite for planes)
     uint64_t mesh_triangles = 0;  ///< triangles in all meshes
@@ -51,12 +54,13 @@ struct Scene {
 };
 
 /// Builds the runtime scene from a validated description. The BVH is built when the scene's
-/// rays will use it: `render.accel` is bvh and the pipeline is raycast or raytrace.
-Scene build_scene(SceneDesc desc);
+/// rays will use it: `render.accel` is bvh and the pipeline is raycast or raytrace (otherwise
+/// build_bvh() may be called later, before a ray pipeline renders it).
+BuiltScene build_scene(const SceneDesc& desc);
 
 /// (Re)builds scene.bvh over the scene's shapes and mesh triangles (binned SAH, bvh.h, then
 /// 8-wide, wide_bvh.h) and times it in bvh_build_seconds; for a small scene without meshes
 /// also sets `direct` and groups its spheres (the BVH is built all the same, and unused).
-void build_bvh(Scene& scene);
+void build_bvh(BuiltScene& scene);
 
 }  // namespace luz

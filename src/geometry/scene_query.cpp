@@ -1,5 +1,5 @@
-// Scene ray queries: BVH traversal (render.accel = bvh), every shape in order for a small
-// scene without meshes (bvh, Scene::direct), or every shape and triangle in order (none), with
+// BuiltScene ray queries: BVH traversal (render.accel = bvh), every shape in order for a small
+// scene without meshes (bvh, BuiltScene::direct), or every shape and triangle in order (none), with
 // one rule for ties so all give the same answers.
 #include "geometry/scene_query.h"
 
@@ -31,12 +31,14 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 Vec3 inverse_direction(const Vec3& d) { return {1.0f / d.x, 1.0f / d.y, 1.0f / d.z}; }
 
-/// A small scene without meshes (Scene::direct): tested shape by shape, even with a BVH.
-bool use_direct(const Scene& scene) {
-    return scene.direct && scene.desc.render.accel == Accel::bvh;
+/// A small scene without meshes (BuiltScene::direct): tested shape by shape, even with a BVH.
+bool use_direct(const BuiltScene& scene) {
+    return scene.direct && scene.geometry.accel == Accel::bvh;
 }
 
-bool use_bvh(const Scene& scene) { return scene.has_bvh && scene.desc.render.accel == Accel::bvh; }
+bool use_bvh(const BuiltScene& scene) {
+    return scene.has_bvh && scene.geometry.accel == Accel::bvh;
+}
 
 /// The nearest hit so far, ordered by (t, shape, triangle): whatever order primitives are
 /// tested in, the lowest of these wins.
@@ -66,7 +68,7 @@ struct Best {
 };
 
 /// Shape i (not a mesh) against r.
-void offer_shape(const Scene& scene, uint32_t i, const Ray& r, float t_min, Best& best,
+void offer_shape(const BuiltScene& scene, uint32_t i, const Ray& r, float t_min, Best& best,
                  IntersectCounters& counters) {
     ++counters.primitive;
     Hit h;
@@ -87,7 +89,7 @@ void offer_triangle(const WatertightRay& w, const Vec3& p0, const Vec3& p1, cons
     }
 }
 
-bool nearest_bvh(const Scene& scene, const Ray& r, float t_min, Best& best,
+bool nearest_bvh(const BuiltScene& scene, const Ray& r, float t_min, Best& best,
                  IntersectCounters& counters) {
     for (uint32_t i : scene.unbounded) offer_shape(scene, i, r, t_min, best, counters);
     const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
@@ -104,7 +106,7 @@ bool nearest_bvh(const Scene& scene, const Ray& r, float t_min, Best& best,
     return best.found;
 }
 
-bool nearest_all(const Scene& scene, const Ray& r, float t_min, Best& best,
+bool nearest_all(const BuiltScene& scene, const Ray& r, float t_min, Best& best,
                  IntersectCounters& counters) {
     const Vec3 inv_dir = inverse_direction(r.direction);
     const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
@@ -173,8 +175,8 @@ class Crossings {
 };
 
 /// Records n > 0 crossings of a surface of `material`; false if it is opaque (it blocks).
-bool add_crossings(const Scene& scene, int material, uint32_t n, Crossings& crossings) {
-    const float transparency = scene.desc.materials[material].transparency;
+bool add_crossings(const Materials& materials, int material, uint32_t n, Crossings& crossings) {
+    const float transparency = materials[material].transparency;
     if (transparency <= 0) return false;
     crossings.add(material, n, transparency);
     return true;
@@ -182,45 +184,45 @@ bool add_crossings(const Scene& scene, int material, uint32_t n, Crossings& cros
 
 /// Every crossing of shape i (not a mesh) with r in (t_min, t_max); false on an opaque one.
 /// Inlined: it is the inner loop of every shadow ray.
-[[gnu::always_inline]] inline bool cross_shape(const Scene& scene, uint32_t i, const Ray& r,
-                                               float t_min, float t_max, Crossings& crossings,
-                                               IntersectCounters& counters) {
+[[gnu::always_inline]] inline bool cross_shape(const BuiltScene& scene, const Materials& materials,
+                                               uint32_t i, const Ray& r, float t_min, float t_max,
+                                               Crossings& crossings, IntersectCounters& counters) {
     const Shape& s = scene.shapes[i];
-    const bool opaque = scene.desc.materials[s.material].transparency <= 0;
+    const bool opaque = materials[s.material].transparency <= 0;
     const uint32_t n = count_crossings(s, r, t_min, t_max, opaque, counters.primitive);
-    return n == 0 || add_crossings(scene, s.material, n, crossings);
+    return n == 0 || add_crossings(materials, s.material, n, crossings);
 }
 
 /// Triangle `tri` of mesh shape i; false if it blocks (opaque).
-bool cross_triangle(const Scene& scene, const WatertightRay& w, const Vec3& p0, const Vec3& p1,
-                    const Vec3& p2, uint32_t i, uint32_t tri, float t_min, float t_max,
-                    Crossings& crossings, IntersectCounters& counters) {
+bool cross_triangle(const BuiltScene& scene, const Materials& materials, const WatertightRay& w,
+                    const Vec3& p0, const Vec3& p1, const Vec3& p2, uint32_t i, uint32_t tri,
+                    float t_min, float t_max, Crossings& crossings, IntersectCounters& counters) {
     ++counters.primitive;
     float t, b1, b2;
     if (!intersect_triangle(w, p0, p1, p2, t_min, t_max, t, b1, b2)) return true;
-    return add_crossings(scene, scene.shapes[i].mesh->materials[tri], 1, crossings);
+    return add_crossings(materials, scene.shapes[i].mesh->materials[tri], 1, crossings);
 }
 
-float transmittance_bvh(const Scene& scene, const Ray& r, float t_min, float t_max,
-                        IntersectCounters& counters) {
+float transmittance_bvh(const BuiltScene& scene, const Materials& materials, const Ray& r,
+                        float t_min, float t_max, IntersectCounters& counters) {
     Crossings crossings;
     for (uint32_t i : scene.unbounded) {
-        if (!cross_shape(scene, i, r, t_min, t_max, crossings, counters)) return 0.0f;
+        if (!cross_shape(scene, materials, i, r, t_min, t_max, crossings, counters)) return 0.0f;
     }
     const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
     const bool blocked = scene.bvh.any(r, t_min, t_max, counters.bounds, [&](uint32_t slot) {
         const BvhPrim& p = scene.bvh_prims[slot];
         if (p.triangle != BvhPrim::kNotTriangle) {
-            return !cross_triangle(scene, w, p.p0, p.p1, p.p2, p.shape, p.triangle, t_min, t_max,
-                                   crossings, counters);
+            return !cross_triangle(scene, materials, w, p.p0, p.p1, p.p2, p.shape, p.triangle,
+                                   t_min, t_max, crossings, counters);
         }
-        return !cross_shape(scene, p.shape, r, t_min, t_max, crossings, counters);
+        return !cross_shape(scene, materials, p.shape, r, t_min, t_max, crossings, counters);
     });
     return blocked ? 0.0f : crossings.product();
 }
 
-float transmittance_all(const Scene& scene, const Ray& r, float t_min, float t_max,
-                        IntersectCounters& counters) {
+float transmittance_all(const BuiltScene& scene, const Materials& materials, const Ray& r,
+                        float t_min, float t_max, IntersectCounters& counters) {
     const Vec3 inv_dir = inverse_direction(r.direction);
     const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
     Crossings crossings;
@@ -232,14 +234,15 @@ float transmittance_all(const Scene& scene, const Ray& r, float t_min, float t_m
             if (!hit_bounds(scene.bounds[k], r, inv_dir, t_min, t_max)) continue;
         }
         if (!s.mesh) {
-            if (!cross_shape(scene, i, r, t_min, t_max, crossings, counters)) return 0.0f;
+            if (!cross_shape(scene, materials, i, r, t_min, t_max, crossings, counters))
+                return 0.0f;
             continue;
         }
         Vec3 p0, p1, p2;
         for (size_t t = 0; t < s.mesh->triangle_count(); ++t) {
             s.mesh->vertices(t, p0, p1, p2);
-            if (!cross_triangle(scene, w, p0, p1, p2, i, static_cast<uint32_t>(t), t_min, t_max,
-                                crossings, counters))
+            if (!cross_triangle(scene, materials, w, p0, p1, p2, i, static_cast<uint32_t>(t), t_min,
+                                t_max, crossings, counters))
                 return 0.0f;
         }
     }
@@ -248,12 +251,12 @@ float transmittance_all(const Scene& scene, const Ray& r, float t_min, float t_m
 
 /// The roots of r with every sphere group of a direct scene, at once.
 struct GroupRoots {
-    SphereGroupRoots group[Scene::kDirectShapes / SphereGroup::kLanes];
-    GroupRoots(const Scene& scene, const Ray& r) {
+    SphereGroupRoots group[BuiltScene::kDirectShapes / SphereGroup::kLanes];
+    GroupRoots(const BuiltScene& scene, const Ray& r) {
         for (size_t g = 0; g < scene.sphere_groups.size(); ++g)
             group[g] = sphere_group_roots(scene.sphere_groups[g], r);
     }
-    /// The answer of sphere lane `lane` (Scene::sphere_lane): whether it hits, and its roots;
+    /// The answer of sphere lane `lane` (BuiltScene::sphere_lane): whether it hits, and its roots;
     /// false if the lane needs the scalar test (its double path) instead.
     bool answer(int lane, bool& hit, float& t0, float& t1) const {
         const SphereGroupRoots& g = group[lane / SphereGroup::kLanes];
@@ -283,7 +286,7 @@ struct LazyBoxTest {
 /// their groups' roots, the other shapes behind their box when they have no world form. The
 /// nearest hit needs no tie rule of its own: a later shape must be strictly nearer to replace
 /// an earlier one, so ties keep the lowest shape.
-bool nearest_direct(const Scene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
+bool nearest_direct(const BuiltScene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
                     IntersectCounters& counters) {
     const GroupRoots roots(scene, r);
     LazyBoxTest boxes{r};
@@ -320,8 +323,8 @@ bool nearest_direct(const Scene& scene, const Ray& r, float t_min, float t_max, 
 }
 
 /// transmittance() of a small scene without meshes (use_direct), shape by shape.
-float transmittance_direct(const Scene& scene, const Ray& r, float t_min, float t_max,
-                           IntersectCounters& counters) {
+float transmittance_direct(const BuiltScene& scene, const Materials& materials, const Ray& r,
+                           float t_min, float t_max, IntersectCounters& counters) {
     const GroupRoots roots(scene, r);
     LazyBoxTest boxes{r};
     Crossings crossings;
@@ -333,12 +336,12 @@ float transmittance_direct(const Scene& scene, const Ray& r, float t_min, float 
         if (const int lane = scene.sphere_lane[k]; lane >= 0 && roots.answer(lane, met, t0, t1)) {
             ++counters.primitive;  // as count_crossings() counts
             const uint32_t n = met ? roots_within(t0, t1, t_min, t_max) : 0;
-            if (n > 0 && !add_crossings(scene, s.material, n, crossings)) return 0.0f;
+            if (n > 0 && !add_crossings(materials, s.material, n, crossings)) return 0.0f;
             continue;
         }
         if (!s.world_form && is_bounded(s) && !boxes.hit(scene.bounds[k], t_min, t_max, counters))
             continue;
-        if (!cross_shape(scene, i, r, t_min, t_max, crossings, counters)) return 0.0f;
+        if (!cross_shape(scene, materials, i, r, t_min, t_max, crossings, counters)) return 0.0f;
     }
     return crossings.product();
 }
@@ -357,7 +360,7 @@ auto timed(IntersectCounters& counters, F&& f) {
 
 }  // namespace
 
-bool nearest_hit(const Scene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
+bool nearest_hit(const BuiltScene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
                  IntersectCounters& counters) {
     return timed(counters, [&] {
         if (use_direct(scene)) return nearest_direct(scene, r, t_min, t_max, hit, counters);
@@ -369,12 +372,13 @@ bool nearest_hit(const Scene& scene, const Ray& r, float t_min, float t_max, Hit
     });
 }
 
-float transmittance(const Scene& scene, const Ray& r, float t_min, float t_max,
-                    IntersectCounters& counters) {
+float transmittance(const BuiltScene& scene, const Materials& materials, const Ray& r, float t_min,
+                    float t_max, IntersectCounters& counters) {
     return timed(counters, [&] {
-        if (use_direct(scene)) return transmittance_direct(scene, r, t_min, t_max, counters);
-        return use_bvh(scene) ? transmittance_bvh(scene, r, t_min, t_max, counters)
-                              : transmittance_all(scene, r, t_min, t_max, counters);
+        if (use_direct(scene))
+            return transmittance_direct(scene, materials, r, t_min, t_max, counters);
+        return use_bvh(scene) ? transmittance_bvh(scene, materials, r, t_min, t_max, counters)
+                              : transmittance_all(scene, materials, r, t_min, t_max, counters);
     });
 }
 

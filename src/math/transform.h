@@ -15,6 +15,8 @@ namespace luz {
 struct Affine {
     float m[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
 
+    constexpr bool operator==(const Affine&) const = default;
+
     constexpr Vec3 point(const Vec3& p) const {
         return {m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
                 m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],

@@ -8,13 +8,13 @@
 
 namespace luz {
 
-void render_ray_traced(const Scene& scene, const RenderControl& control, Image& out,
-                       RenderStats& stats) {
-    const RayTracer tracer(scene, scene.desc.render.pipeline == Pipeline::raytrace);
-    const int w = scene.desc.image.width, h = scene.desc.image.height;
+void render_ray_traced(const BuiltScene& scene, const Settings& settings,
+                       const RenderControl& control, Image& out, RenderStats& stats) {
+    const RayTracer tracer(scene, settings, settings.render.pipeline == Pipeline::raytrace);
+    const int w = settings.image.width, h = settings.image.height;
     std::vector<TraceCounters> counters;
     const SamplerCounts counts = sample_image(
-        scene.desc.render.antialias, w, h, control,
+        settings.render.antialias, w, h, control,
         [&tracer](float x, float y, TraceCounters& c) { return tracer.sample(x, y, c); }, out,
         counters, control.aa_mask);
     for (const TraceCounters& c : counters) {

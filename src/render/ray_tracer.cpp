@@ -43,22 +43,22 @@ bool refract(const Vec3& D, const Vec3& N, float n1, float n2, Vec3& T) {
     return true;
 }
 
-RayTracer::RayTracer(const Scene& scene, bool full)
+RayTracer::RayTracer(const BuiltScene& scene, const Settings& settings, bool full)
     : scene_(scene),
-      camera_(Camera::from(scene.desc.camera, scene.desc.image.width, scene.desc.image.height)),
-      lighting_{scene.desc.render.model, scene.desc.ambient, scene.desc.attenuation_k,
-                scene.desc.lights},
-      max_depth_(full ? scene.desc.render.max_depth : 0),
+      settings_(settings),
+      camera_(Camera::from(settings.camera, settings.image.width, settings.image.height)),
+      lighting_{settings.render.model, settings.ambient, settings.attenuation_k, settings.lights},
+      max_depth_(full ? settings.render.max_depth : 0),
       full_(full),
-      tree_attenuation_(scene.desc.render.tree_attenuation) {
-    for (size_t j = 0; j < scene.desc.lights.size(); ++j)
-        if (scene.desc.lights[j].radius > 0) visible_lights_.push_back(static_cast<int>(j));
+      tree_attenuation_(settings.render.tree_attenuation) {
+    for (size_t j = 0; j < settings.lights.size(); ++j)
+        if (settings.lights[j].radius > 0) visible_lights_.push_back(static_cast<int>(j));
 }
 
 int RayTracer::nearest_light(const Ray& ray, float& t_max, TraceCounters& counters) const {
     int nearest = -1;
     for (int j : visible_lights_) {
-        const Light& light = scene_.desc.lights[j];
+        const Light& light = settings_.lights[j];
         ++counters.tests.primitive;
         float t;
         if (hit_light_sphere(ray, light.position, light.radius, t) && t < t_max) {
@@ -79,7 +79,7 @@ template <bool kRecord>
 Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, float& distance,
                           RayTree* tree_in) const {
     RayTree* const tree = kRecord ? tree_in : nullptr;  // a constant null when not recording
-    const SceneDesc& desc = scene_.desc;
+    const Settings& desc = settings_;
     // Ray-tree recording (viewer only): this ray's node, filled as the numbers are computed.
     int self = -1;
     if (tree) {
@@ -132,7 +132,8 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, fl
         auto visibility = [&](size_t, const Vec3& P, const Vec3& L, float d) {
             ++counters.shadow;
             // The segment P → light j moved by the spawn offset (≤ 1e-4): direction L, length d.
-            return transmittance(scene_, spawn_ray(P, sp.Ng, L), 0.0f, d, counters.tests);
+            return transmittance(scene_, desc.materials, spawn_ray(P, sp.Ng, L), 0.0f, d,
+                                 counters.tests);
         };
         c = shade(p, lighting_, visibility, terms_out);
     } else {

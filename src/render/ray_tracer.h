@@ -49,7 +49,7 @@ class RayTracer {
   public:
     /// `full`: raytrace (shadow rays, reflection, refraction up to max_depth); otherwise
     /// raycast (the local model with every light visible, no secondary rays).
-    RayTracer(const Scene& scene, bool full);
+    RayTracer(const BuiltScene& scene, const Settings& settings, bool full);
 
     /// The colour seen along `ray` at ray-tree depth `depth` (SPEC §1.1). `distance` receives
     /// the distance to what the ray hit (infinity on a miss). When `tree` is set, appends this
@@ -74,7 +74,8 @@ class RayTracer {
     /// The nearest visible light sphere along ray within (0, t_max), or −1.
     int nearest_light(const Ray& ray, float& t_max, TraceCounters& counters) const;
 
-    const Scene& scene_;
+    const BuiltScene& scene_;
+    const Settings& settings_;         ///< camera, lights, materials … of this render
     std::vector<int> visible_lights_;  ///< lights with radius > 0, seen by rays
     Camera camera_;
     Lighting lighting_;
@@ -84,7 +85,7 @@ class RayTracer {
 };
 
 /// Renders the scene with the raycast or raytrace pipeline into `out` (ray_render.cpp).
-void render_ray_traced(const Scene& scene, const RenderControl& control, Image& out,
-                       RenderStats& stats);
+void render_ray_traced(const BuiltScene& scene, const Settings& settings,
+                       const RenderControl& control, Image& out, RenderStats& stats);
 
 }  // namespace luz

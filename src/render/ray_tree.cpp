@@ -5,11 +5,11 @@
 
 namespace luz {
 
-RayTree trace_ray_tree(const Scene& scene, float px, float py) {
-    const bool full = scene.desc.render.pipeline == Pipeline::raytrace;
-    const RayTracer tracer(scene, full);
+RayTree trace_ray_tree(const BuiltScene& scene, const Settings& settings, float px, float py) {
+    const bool full = settings.render.pipeline == Pipeline::raytrace;
+    const RayTracer tracer(scene, settings, full);
     RayTree tree;
-    tree.raycast_for_zbuffer = scene.desc.render.pipeline == Pipeline::zbuffer;
+    tree.raycast_for_zbuffer = settings.render.pipeline == Pipeline::zbuffer;
     TraceCounters counters;
     float distance;
     tracer.trace(tracer.camera().ray(px, py), 0, counters, distance, &tree);

@@ -51,6 +51,6 @@ struct RayTree {
 /// is (i + 0.5, j + 0.5) — traced by the scene's ray pipeline (RayTracer::trace with
 /// recording). A zbuffer scene is traced as raycast (max depth 0, no shadow rays), which gives
 /// the zbuffer's colour up to tessellation (SPEC §1). nodes[0].color is the sample's colour.
-RayTree trace_ray_tree(const Scene& scene, float px, float py);
+RayTree trace_ray_tree(const BuiltScene& scene, const Settings& settings, float px, float py);
 
 }  // namespace luz

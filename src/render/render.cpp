@@ -10,18 +10,19 @@
 
 namespace luz {
 
-Image render(const Scene& scene, const RenderControl& control, RenderStats& stats) {
+Image render(const BuiltScene& scene, const Settings& settings, const RenderControl& control,
+             RenderStats& stats) {
     const auto start = std::chrono::steady_clock::now();
-    const ImageDesc& img = scene.desc.image;
+    const ImageDesc& img = settings.image;
     stats.width = img.width;
     stats.height = img.height;
     stats.threads = resolve_threads(control.threads);
     Image out;
-    switch (scene.desc.render.pipeline) {
+    switch (settings.render.pipeline) {
         case Pipeline::zbuffer: {
             out = Image(img.width, img.height, img.background);  // what no triangle covers
-            const ZbufferGeometry geometry = prepare_zbuffer(scene);
-            render_zbuffer(scene, geometry, control, out, stats);
+            const ZbufferGeometry geometry = prepare_zbuffer(scene, settings);
+            render_zbuffer(scene, settings, geometry, control, out, stats);
             break;
         }
         case Pipeline::raycast:
@@ -29,7 +30,7 @@ Image render(const Scene& scene, const RenderControl& control, RenderStats& stat
             // Every pixel is written by the sampler: the memory is first touched there, by all
             // threads, instead of being filled here by one.
             out = Image(img.width, img.height, Unwritten{});
-            render_ray_traced(scene, control, out, stats);
+            render_ray_traced(scene, settings, control, out, stats);
             if (control.cancel && control.cancel->load()) {  // incomplete: no unwritten pixel
                 std::fill(out.pixels.begin(), out.pixels.end(), img.background);
             }

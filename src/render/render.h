@@ -24,7 +24,9 @@ struct RenderControl {
     AaMask* aa_mask = nullptr;
 };
 
-/// Renders `scene` with its render settings; fills `stats`.
-Image render(const Scene& scene, const RenderControl& control, RenderStats& stats);
+/// Renders `scene` with `settings` (image, camera, pipeline, lights, materials …); fills
+/// `stats`. The ray pipelines need the scene's BVH when its accel is bvh (build_bvh()).
+Image render(const BuiltScene& scene, const Settings& settings, const RenderControl& control,
+             RenderStats& stats);
 
 }  // namespace luz

@@ -49,7 +49,8 @@ struct ChunkBins {
 };
 
 struct Frame {
-    const Scene& scene;
+    const BuiltScene& scene;
+    const Settings& settings;
     const ZbufferGeometry& geometry;
     Camera camera;
     bool perspective;
@@ -306,7 +307,7 @@ void rasterize(const Frame& f, const RasterTriangle& r, const std::array<Vec3, 3
     }
 }
 
-Lighting lighting_of(const SceneDesc& desc) {
+Lighting lighting_of(const Settings& desc) {
     return {desc.render.model, desc.ambient, desc.attenuation_k, desc.lights};
 }
 
@@ -314,7 +315,7 @@ Lighting lighting_of(const SceneDesc& desc) {
 /// its point (counted as a sample).
 [[gnu::always_inline]] inline Rgb shade_fragment(const Frame& f, const Lighting& lighting,
                                                  const Fragment& frag, RenderStats& stats) {
-    const SceneDesc& desc = f.scene.desc;
+    const Settings& desc = f.settings;
     const TriangleMesh& mesh = f.geometry.mesh;
     if (frag.triangle == kNoTriangle) return desc.image.background;
     const int32_t material = f.geometry.triangle_material[frag.triangle];
@@ -338,8 +339,8 @@ Lighting lighting_of(const SceneDesc& desc) {
 /// Shades a tile's fragments into the image.
 void shade_tile(const Frame& f, int x0, int y0, int w, int h, const Fragment* frags, Image& out,
                 RenderStats& stats) {
-    const Lighting lighting = lighting_of(f.scene.desc);
-    const Rgb background = f.scene.desc.image.background;
+    const Lighting lighting = lighting_of(f.settings);
+    const Rgb background = f.settings.image.background;
     for (int j = 0; j < h; ++j) {
         Rgb* row = &out.at(x0, y0 + j);
         const Fragment* frag = frags + static_cast<size_t>(j) * w;
@@ -404,7 +405,7 @@ void grid_tile(const Frame& f, const std::vector<ChunkBins>& chunks, size_t t, c
     rasterize_bins(f, chunks, t, lat, frags.data());
     std::vector<Rgb>& colours = grid_scratch_for_this_thread();
     colours.resize(frags.size());
-    const Lighting lighting = lighting_of(f.scene.desc);
+    const Lighting lighting = lighting_of(f.settings);
     for (int b = 0; b < lat.h; ++b) {
         const int j = region.y0 + b / s;
         for (int a = 0; a < lat.w; ++a) {
@@ -443,11 +444,11 @@ struct ZbufferFine {
 };
 
 /// The scene's size: the diagonal of everything bounded, the camera and what it looks at.
-float scene_size(const Scene& scene) {
+float scene_size(const BuiltScene& scene, const Settings& settings) {
     Bounds3 b;
     for (const Shape& s : scene.shapes)
         if (is_bounded(s)) b.expand(bounds(s));
-    const CameraDesc& c = scene.desc.camera;
+    const CameraDesc& c = settings.camera;
     b.expand(c.position);
     b.expand(c.look_at);
     return std::max(length(b.extent()) + c.view_height, 1.0f);
@@ -456,11 +457,12 @@ float scene_size(const Scene& scene) {
 /// An unbounded plane as a square far larger than the scene, centred at the camera's foot
 /// on the plane, made of a grid whose cells double in size away from the centre: every point
 /// is interpolated from nearby vertices, so positions (and checker cells) stay precise.
-void append_plane(const Scene& scene, const Shape& s, TriangleMesh& mesh) {
-    const float size = scene_size(scene);
+void append_plane(const BuiltScene& scene, const Settings& settings, const Shape& s,
+                  TriangleMesh& mesh) {
+    const float size = scene_size(scene, settings);
     const Vec3 o = s.transform.point({0, 0, 0});
     const Vec3 n = normalize(s.transform.normal({0, 0, 1}));
-    const Vec3 eye = scene.desc.camera.position;
+    const Vec3 eye = settings.camera.position;
     const Vec3 foot = eye - n * dot(eye - o, n);
     Vec3 u, v;
     orthonormal_basis(n, u, v);
@@ -500,13 +502,13 @@ void append_triangles_from(size_t first_index, int32_t material, ZbufferGeometry
 
 }  // namespace
 
-ZbufferGeometry prepare_zbuffer(const Scene& scene) {
+ZbufferGeometry prepare_zbuffer(const BuiltScene& scene, const Settings& settings) {
     ZbufferGeometry g;
-    const int level = scene.desc.render.tessellation;
+    const int level = scene.geometry.tessellation;
     for (const Shape& s : scene.shapes) {
         const size_t first = g.mesh.indices.size();
         if (s.type == ShapeType::plane) {
-            append_plane(scene, s, g.mesh);
+            append_plane(scene, settings, s, g.mesh);
         } else {
             tessellate(s, level, g.mesh);
         }
@@ -519,8 +521,8 @@ ZbufferGeometry prepare_zbuffer(const Scene& scene) {
         }
     }
     // Visible light spheres, drawn in the light's clamped colour (SPEC §1.1).
-    for (size_t j = 0; j < scene.desc.lights.size(); ++j) {
-        const Light& light = scene.desc.lights[j];
+    for (size_t j = 0; j < settings.lights.size(); ++j) {
+        const Light& light = settings.lights[j];
         if (light.radius <= 0) continue;
         ObjectDesc o;
         o.type = ShapeType::sphere;
@@ -533,13 +535,15 @@ ZbufferGeometry prepare_zbuffer(const Scene& scene) {
     return g;
 }
 
-void render_zbuffer(const Scene& scene, const ZbufferGeometry& geometry,
-                    const RenderControl& control, Image& out, RenderStats& stats) {
-    const ImageDesc& img = scene.desc.image;
+void render_zbuffer(const BuiltScene& scene, const Settings& settings,
+                    const ZbufferGeometry& geometry, const RenderControl& control, Image& out,
+                    RenderStats& stats) {
+    const ImageDesc& img = settings.image;
     Frame f{scene,
+            settings,
             geometry,
-            Camera::from(scene.desc.camera, img.width, img.height),
-            scene.desc.camera.projection == Projection::perspective,
+            Camera::from(settings.camera, img.width, img.height),
+            settings.camera.projection == Projection::perspective,
             img.width,
             img.height,
             0,
@@ -548,7 +552,7 @@ void render_zbuffer(const Scene& scene, const ZbufferGeometry& geometry,
     if (out.width != img.width || out.height != img.height) out = Image(img.width, img.height);
 
     // Antialiasing (SPEC §1.2) sets the raster's fixed-point unit and its tiles.
-    const AntialiasDesc& aa = scene.desc.render.antialias;
+    const AntialiasDesc& aa = settings.render.antialias;
     const GridSpec grid = [&] {
         GridSpec g = GridSpec::from(aa, img.width, img.height);
         g.jitter = false;  // the zbuffer samples the regular grid (docs/ARCHITECTURE.md)
@@ -629,7 +633,7 @@ void render_zbuffer(const Scene& scene, const ZbufferGeometry& geometry,
                 std::vector<Fragment>& frags = fragment_scratch();
                 frags.resize(static_cast<size_t>(lat.w) * lat.h);
                 rasterize_bins(f, chunks, t, lat, frags.data());
-                const Lighting lighting = lighting_of(scene.desc);
+                const Lighting lighting = lighting_of(settings);
                 for (int y = 0; y < lat.h; ++y)
                     for (int x = 0; x < lat.w; ++x)
                         corners[static_cast<size_t>(c.y0 + y) * (W + 1) + c.x0 + x] =
@@ -642,7 +646,7 @@ void render_zbuffer(const Scene& scene, const ZbufferGeometry& geometry,
             parallel_items(control.threads, tile_count, [&](size_t t) {
                 if (cancelled()) return;
                 RenderStats& ts = tile_stats[tile_count + t];
-                const Lighting lighting = lighting_of(scene.desc);
+                const Lighting lighting = lighting_of(settings);
                 const int S = spec.lattice();
                 std::vector<Fragment>& frags = fragment_scratch();
                 frags.resize(static_cast<size_t>(S + 1) * (S + 1));

@@ -22,10 +22,11 @@ struct ZbufferGeometry {
 };
 
 /// Tessellates every shape of `scene` at its `render.tessellation` level.
-ZbufferGeometry prepare_zbuffer(const Scene& scene);
+ZbufferGeometry prepare_zbuffer(const BuiltScene& scene, const Settings& settings);
 
 /// Rasterizes prepared geometry into `out` (scene.desc.image size, background filled).
-void render_zbuffer(const Scene& scene, const ZbufferGeometry& geometry,
-                    const RenderControl& control, Image& out, RenderStats& stats);
+void render_zbuffer(const BuiltScene& scene, const Settings& settings,
+                    const ZbufferGeometry& geometry, const RenderControl& control, Image& out,
+                    RenderStats& stats);
 
 }  // namespace luz

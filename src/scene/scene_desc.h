@@ -47,14 +47,20 @@ struct AntialiasDesc {
     int max_level = 3;
 };
 
+/// The `render` keys a render may change without a rebuild.
 struct RenderDesc {
     Pipeline pipeline = Pipeline::zbuffer;
     Model model = Model::phong;
     int max_depth = 5;
     bool tree_attenuation = false;
+    AntialiasDesc antialias;
+};
+
+/// The `render` keys that shape the built scene (a change needs a rebuild): how finely
+/// curved shapes are tessellated for the zbuffer, and whether rays use a BVH.
+struct GeometryDesc {
     int tessellation = 64;
     Accel accel = Accel::bvh;
-    AntialiasDesc antialias;
 };
 
 struct Light {
@@ -63,9 +69,10 @@ struct Light {
     float radius = 0.0f;  ///< > 0: a visible sphere of the light's clamped colour
 };
 
-struct SceneDesc {
-    std::string name;    ///< file stem or demo name; the default output is name + ".png"
-    std::string source;  ///< the file (or demo:NAME) it came from, for messages
+/// What a render may change without rebuilding the scene: image size, camera, pipeline, model,
+/// antialiasing, depth, and the constants of lights and materials (objects refer to materials
+/// by index, so a render's settings must have at least the scene's materials).
+struct Settings {
     ImageDesc image;
     CameraDesc camera;
     RenderDesc render;
@@ -73,6 +80,13 @@ struct SceneDesc {
     float attenuation_k = 1.0f;  ///< K
     std::vector<Light> lights;
     std::vector<Material> materials;  ///< materials[0] is the default material
+};
+
+/// A whole scene file: its Settings, and what needs a build (the objects and GeometryDesc).
+struct SceneDesc : Settings {
+    std::string name;       ///< file stem or demo name; the default output is name + ".png"
+    std::string source;     ///< the file (or demo:NAME) it came from, for messages
+    GeometryDesc geometry;  ///< the `render` keys tessellation and accel
     std::vector<ObjectDesc> objects;
     std::vector<std::string> warnings;  ///< non-fatal input problems ("FILE:LINE: what")
 };

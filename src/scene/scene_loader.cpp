@@ -1,4 +1,4 @@
-// Scene loading (SPEC §2): JSON text → --set overrides applied to the document → validation
+// BuiltScene loading (SPEC §2): JSON text → --set overrides applied to the document → validation
 // into a SceneDesc with every default filled. Every error names the file (or the override)
 // and the line:column or key path.
 #include "scene/scene_loader.h"
@@ -340,7 +340,7 @@ void read_camera(const Json* j, CameraDesc& camera) {
     }
 }
 
-void read_render(const Json& j, RenderDesc& render) {
+void read_render(const Json& j, RenderDesc& render, GeometryDesc& geometry) {
     const Section s(j, "render",
                     {"pipeline", "model", "max_depth", "tree_attenuation", "tessellation", "accel",
                      "antialias"});
@@ -351,8 +351,8 @@ void read_render(const Json& j, RenderDesc& render) {
     s.enumeration("model", render.model, {{"lambert", Model::lambert}, {"phong", Model::phong}});
     s.integer("max_depth", render.max_depth, 0, 64);
     s.boolean("tree_attenuation", render.tree_attenuation);
-    s.integer("tessellation", render.tessellation, 3, 4096);
-    s.enumeration("accel", render.accel, {{"bvh", Accel::bvh}, {"none", Accel::none}});
+    s.integer("tessellation", geometry.tessellation, 3, 4096);
+    s.enumeration("accel", geometry.accel, {{"bvh", Accel::bvh}, {"none", Accel::none}});
     if (const Json* aj = s.get("antialias")) {
         AntialiasDesc& aa = render.antialias;
         const Section a(*aj, s.key("antialias"),
@@ -737,7 +737,7 @@ void read_scene(const Json& doc, const std::string& base_dir, SceneDesc& scene) 
                        "materials", "objects"});
     if (const Json* j = top.get("image")) read_image(*j, scene.image);
     read_camera(top.get("camera"), scene.camera);
-    if (const Json* j = top.get("render")) read_render(*j, scene.render);
+    if (const Json* j = top.get("render")) read_render(*j, scene.render, scene.geometry);
     top.rgb("ambient", scene.ambient, kNonNegative);
     top.number("attenuation_k", scene.attenuation_k, kPositive);
 

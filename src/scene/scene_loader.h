@@ -1,4 +1,4 @@
-// Scene loading: JSON text (a file or a built-in demo) plus overrides → validated SceneDesc.
+// BuiltScene loading: JSON text (a file or a built-in demo) plus overrides → validated SceneDesc.
 #pragma once
 
 #include <string>

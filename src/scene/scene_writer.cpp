@@ -100,8 +100,8 @@ std::string scene_to_json(const SceneDesc& d, const std::string& out_dir) {
                    {"model", r.model == Model::lambert ? "lambert" : "phong"},
                    {"max_depth", r.max_depth},
                    {"tree_attenuation", r.tree_attenuation},
-                   {"tessellation", r.tessellation},
-                   {"accel", r.accel == Accel::none ? "none" : "bvh"},
+                   {"tessellation", d.geometry.tessellation},
+                   {"accel", d.geometry.accel == Accel::none ? "none" : "bvh"},
                    {"antialias",
                     {{"mode", aa.mode == AaMode::none   ? "none"
                               : aa.mode == AaMode::grid ? "grid"

@@ -1,4 +1,4 @@
-// Scene writer: a SceneDesc back to scene JSON (SPEC §2) that the loader reads into the same
+// BuiltScene writer: a SceneDesc back to scene JSON (SPEC §2) that the loader reads into the same
 // description — every key written, materials by name, mesh paths relative to the new file.
 #pragma once
 

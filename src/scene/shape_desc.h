@@ -56,6 +56,9 @@ struct ObjectDesc {
     /// names a material (then every triangle has `material`). Faces without an MTL material
     /// have `material` (the default material unless the object names one).
     std::vector<int> mesh_materials;
+
+    /// Same keys, same values (meshes: the same loaded file): no rebuild needed.
+    bool operator==(const ObjectDesc&) const = default;
 };
 
 }  // namespace luz

@@ -107,7 +107,7 @@ ObjectDesc degenerate_mesh(Rng& rng, const ObjectDesc& base, int zero_area, int 
 SceneDesc scene_with(std::vector<ObjectDesc> objects) {
     SceneDesc d;
     d.render.pipeline = Pipeline::raytrace;
-    d.render.accel = Accel::bvh;
+    d.geometry.accel = Accel::bvh;
     d.materials.resize(3);
     d.materials[1].transparency = 0.7f;
     d.materials[2].transparency = 0.35f;
@@ -161,11 +161,11 @@ struct RandomRays {
 
 /// Runs `rays` random rays through both accelerations; every answer must be the same.
 void expect_bvh_equals_brute_force(const SceneDesc& desc, int rays) {
-    const Scene bvh = build_scene(desc);
+    const BuiltScene bvh = build_scene(desc);
     ASSERT_TRUE(bvh.has_bvh);
     ASSERT_GT(bvh.bvh.nodes().size(), 1u);
-    Scene all = bvh;
-    all.desc.render.accel = Accel::none;
+    BuiltScene all = bvh;
+    all.geometry.accel = Accel::none;
 
     RandomRays gen;
     for (const Shape& s : bvh.shapes) {
@@ -184,8 +184,8 @@ void expect_bvh_equals_brute_force(const SceneDesc& desc, int rays) {
         const bool fa = nearest_hit(all, r, 0.0f, t_max, ha, ca);
         const bool same = fb == fa && (!fb || (hb.t == ha.t && hb.shape == ha.shape &&
                                                hb.part == ha.part && hb.u == ha.u && hb.v == ha.v));
-        const float Tb = transmittance(bvh, r, 0.0f, t_max, cb);
-        const float Ta = transmittance(all, r, 0.0f, t_max, ca);
+        const float Tb = transmittance(bvh, desc.materials, r, 0.0f, t_max, cb);
+        const float Ta = transmittance(all, desc.materials, r, 0.0f, t_max, ca);
         if (!same || std::memcmp(&Tb, &Ta, sizeof(float)) != 0) {
             if (++mismatches <= 5) {
                 ADD_FAILURE() << "ray " << k << " from (" << r.origin.x << ", " << r.origin.y
@@ -259,17 +259,17 @@ TEST(BvhEqualsBruteForce, ShadowProductsDoNotDependOnTheOrderOfCrossings) {
         }
         d.objects.push_back(mesh_object(p, idx, m + 1));
     }
-    const Scene bvh = build_scene(d);
-    Scene all = bvh;
-    all.desc.render.accel = Accel::none;
+    const BuiltScene bvh = build_scene(d);
+    BuiltScene all = bvh;
+    all.geometry.accel = Accel::none;
     Rng rng(7);
     IntersectCounters c;
     for (int k = 0; k < 2000; ++k) {
         const Vec3 o{uniform(rng, -1, 1), uniform(rng, -1, 1), -1};
         const Vec3 to{uniform(rng, -1, 1), uniform(rng, -1, 1), 6};
         const Ray r{o, normalize(to - o)};
-        const float Tb = transmittance(bvh, r, 0.0f, length(to - o), c);
-        const float Ta = transmittance(all, r, 0.0f, length(to - o), c);
+        const float Tb = transmittance(bvh, d.materials, r, 0.0f, length(to - o), c);
+        const float Ta = transmittance(all, d.materials, r, 0.0f, length(to - o), c);
         ASSERT_EQ(std::memcmp(&Tb, &Ta, sizeof(float)), 0) << k << ": " << Tb << " vs " << Ta;
         ASSERT_NEAR(Ta, std::pow(0.7 * 0.35 * 0.9 * 0.61, 10), 1e-9);
     }
@@ -292,12 +292,13 @@ TEST(SmallScenes, ShapeByShapeEqualsTheBvhAndTestingEverything) {
     objects.push_back(torus);
     objects.push_back(plane({0, -4, 0}, 2));
     ASSERT_LE(objects.size(), 8u);
-    const Scene direct = build_scene(scene_with(objects));
-    while (objects.size() <= Scene::kDirectShapes)
+    const SceneDesc direct_desc = scene_with(objects);
+    const BuiltScene direct = build_scene(direct_desc);
+    while (objects.size() <= BuiltScene::kDirectShapes)
         objects.push_back(sphere({500, 500, 500}, 1.0f, 0));
-    const Scene bvh = build_scene(scene_with(objects));
-    Scene all = direct;
-    all.desc.render.accel = Accel::none;
+    const BuiltScene bvh = build_scene(scene_with(objects));
+    BuiltScene all = direct;
+    all.geometry.accel = Accel::none;
 
     RandomRays gen;
     IntersectCounters cd, cb, ca;
@@ -319,9 +320,9 @@ TEST(SmallScenes, ShapeByShapeEqualsTheBvhAndTestingEverything) {
         const bool f[3] = {nearest_hit(direct, r, 0.0f, t_max, h[0], cd),
                            nearest_hit(bvh, r, 0.0f, t_max, h[1], cb),
                            nearest_hit(all, r, 0.0f, t_max, h[2], ca)};
-        const float T[3] = {transmittance(direct, r, 0.0f, t_max, cd),
-                            transmittance(bvh, r, 0.0f, t_max, cb),
-                            transmittance(all, r, 0.0f, t_max, ca)};
+        const float T[3] = {transmittance(direct, direct_desc.materials, r, 0.0f, t_max, cd),
+                            transmittance(bvh, direct_desc.materials, r, 0.0f, t_max, cb),
+                            transmittance(all, direct_desc.materials, r, 0.0f, t_max, ca)};
         for (int w = 1; w < 3; ++w) {
             const bool same =
                 f[0] == f[w] &&
@@ -443,7 +444,7 @@ ObjectDesc bumpy_sphere(int n) {
 // (nodes and primitives with their vertices) take under 100 bytes per triangle.
 TEST(Bvh, SceneMeshAndBvhUnder100BytesPerTriangle) {
     for (int n : {64, 180}) {
-        const Scene scene = build_scene(scene_with({bumpy_sphere(n)}));
+        const BuiltScene scene = build_scene(scene_with({bumpy_sphere(n)}));
         ASSERT_TRUE(scene.has_bvh);
         EXPECT_TRUE(scene.bvh.order().empty());
         const Mesh& m = *scene.shapes[0].mesh;

@@ -17,7 +17,7 @@ TEST(BuildScene, OneShapePerObjectInOrder) {
     b.material = 0;
     c.material = 1;
     desc.objects = {a, b, c};
-    const Scene scene = build_scene(desc);
+    const BuiltScene scene = build_scene(desc);
     ASSERT_EQ(scene.shapes.size(), 3u);
     const ShapeType types[] = {ShapeType::sphere, ShapeType::plane, ShapeType::cone};
     const int materials[] = {2, 0, 1};
@@ -26,9 +26,8 @@ TEST(BuildScene, OneShapePerObjectInOrder) {
         EXPECT_EQ(scene.shapes[i].object, i);
         EXPECT_EQ(scene.shapes[i].material, materials[i]);
     }
-    EXPECT_EQ(scene.desc.name, "three");
-    EXPECT_EQ(scene.desc.objects.size(), 3u);
-    EXPECT_EQ(scene.desc.materials.size(), 3u);
+    EXPECT_EQ(scene.shapes.size(), 3u);
+    EXPECT_EQ(scene.material_count, 3u);
     // The shape is the one make_shape gives.
     const Vec3 expected = make_shape(c, 2).transform.point({0, 0, 1});
     EXPECT_EQ(scene.shapes[2].transform.point({0, 0, 1}), expected);

@@ -16,12 +16,12 @@ namespace {
 
 Image render_desc(const SceneDesc& d, RenderStats* stats = nullptr, int threads = 0,
                   AaMask* mask = nullptr) {
-    const Scene scene = build_scene(d);
+    const BuiltScene scene = build_scene(d);
     RenderControl control;
     control.threads = threads;
     control.aa_mask = mask;
     RenderStats s;
-    Image img = render(scene, control, s);
+    Image img = render(scene, d, control, s);
     if (stats) *stats = s;
     return img;
 }

@@ -79,11 +79,11 @@ bool same_bits(const Image& a, const Image& b) {
 TEST(MeshRender, AccelNoneAndBvhGiveTheSameImage) {
     for (Pipeline p : {Pipeline::raytrace, Pipeline::raycast}) {
         SceneDesc d = glass_and_mirror(p);
-        const Scene bvh = build_scene(d);
-        d.render.accel = Accel::none;
-        const Scene none = build_scene(d);
+        const BuiltScene bvh = build_scene(d);
+        d.geometry.accel = Accel::none;
+        const BuiltScene none = build_scene(d);
         RenderStats sb, sn;
-        const Image a = render(bvh, {}, sb), b = render(none, {}, sn);
+        const Image a = render(bvh, d, {}, sb), b = render(none, d, {}, sn);
         EXPECT_TRUE(same_bits(a, b)) << to_string(compare_images(a, b));
         // the same rays, far fewer tests with the BVH
         EXPECT_EQ(sb.rays_shadow, sn.rays_shadow);
@@ -100,9 +100,10 @@ TEST(MeshRender, AccelNoneAndBvhGiveTheSameImage) {
 }
 
 TEST(MeshRender, StatisticsOfTheBvhAndOfIntersectionTime) {
-    const Scene scene = build_scene(glass_and_mirror(Pipeline::raytrace));
+    const SceneDesc d = glass_and_mirror(Pipeline::raytrace);
+    const BuiltScene scene = build_scene(d);
     RenderStats s;
-    render(scene, {}, s);
+    render(scene, d, {}, s);
     EXPECT_EQ(s.bvh_nodes, scene.bvh.nodes().size());
     EXPECT_GE(s.bvh_bytes, s.bvh_nodes * 32 + scene.mesh_triangles * sizeof(BvhPrim));
     EXPECT_GT(s.bvh_build_seconds, 0.0);
@@ -111,7 +112,7 @@ TEST(MeshRender, StatisticsOfTheBvhAndOfIntersectionTime) {
     EXPECT_LE(s.intersect_sampled_seconds, s.sampled_seconds);
     // the zbuffer builds no BVH
     SceneDesc z = glass_and_mirror(Pipeline::zbuffer);
-    const Scene zb = build_scene(z);
+    const BuiltScene zb = build_scene(z);
     EXPECT_FALSE(zb.has_bvh);
 }
 
@@ -129,11 +130,12 @@ TEST(MeshRender, MeshSphereLooksTheSameThroughZbufferAndRaycast) {
         floor.point = {0, -1, 0};
         d.objects = {floor, mesh(uv_sphere({0, 0.2f, 0}, 1.2f, 64, false), 1, smooth)};
         d.render.pipeline = Pipeline::zbuffer;
-        const Scene zb = build_scene(d);
+        const SceneDesc dz = d;
+        const BuiltScene zb = build_scene(d);
         d.render.pipeline = Pipeline::raycast;
-        const Scene rc = build_scene(d);
+        const BuiltScene rc = build_scene(d);
         RenderStats s1, s2;
-        const Image a = render(zb, {}, s1), b = render(rc, {}, s2);
+        const Image a = render(zb, dz, {}, s1), b = render(rc, d, {}, s2);
         const ImageDiff diff = compare_images(a, b, 2.0f / 255);
         EXPECT_GE(diff.fraction_within(), 0.99) << smooth << ": " << to_string(diff);
         EXPECT_EQ(s2.triangles, rc.mesh_triangles);      // raycast: triangles in meshes
@@ -155,10 +157,10 @@ TEST(MeshRender, MtlMaterialsColourTheirFaces) {
         "render": {"model": "lambert"}, "lights": [{"position": [0, 0, 5]}],
         "objects": [{"type": "mesh", "file": "two.obj"}]})";
     for (const char* pipeline : {"zbuffer", "raycast"}) {
-        const Scene scene =
-            build_scene(load_scene((dir / "s.json").string(), {{"render.pipeline", pipeline}}));
+        const SceneDesc d = load_scene((dir / "s.json").string(), {{"render.pipeline", pipeline}});
+        const BuiltScene scene = build_scene(d);
         RenderStats s;
-        const Image img = render(scene, {}, s);
+        const Image img = render(scene, d, {}, s);
         const Rgb left = img.at(10, 13), right = img.at(30, 13);
         EXPECT_GT(left.x, 0.5f) << pipeline;
         EXPECT_EQ(left.y, 0.0f) << pipeline;

@@ -81,8 +81,9 @@ ObjectDesc sphere(Vec3 c, float r, int material) {
     return o;
 }
 
-Rgb trace_down(const Scene& scene, Vec3 from, TraceCounters* counters_out = nullptr) {
-    const RayTracer tracer(scene, true);
+Rgb trace_down(const BuiltScene& scene, const Settings& settings, Vec3 from,
+               TraceCounters* counters_out = nullptr) {
+    const RayTracer tracer(scene, settings, true);
     TraceCounters counters;
     float d;
     const Rgb c = tracer.trace(Ray{from, {0, -1, 0}}, 0, counters, d);
@@ -94,14 +95,14 @@ TEST(Shadows, OpaqueSphereLeavesAmbientOnly) {
     SceneDesc d = empty_scene();
     d.lights.push_back({Vec3{0, 10, 0}, Rgb{1.0f}, 0});
     d.objects = {floor_plane(), sphere({0, 3, 0}, 1, 0)};
-    const Scene scene = build_scene(d);
+    const BuiltScene scene = build_scene(d);
     // Right under the sphere: in shadow.
-    const Rgb shadowed = trace_down(scene, {0, 0.5f, 0});
+    const Rgb shadowed = trace_down(scene, d, {0, 0.5f, 0});
     expect_vec(shadowed, Rgb{0.1f});
     // Far to the side: lit, I = Ka + Kd·cosθ.
     const Vec3 P{5, 0, 0};
     const float cos_theta = normalize(Vec3{0, 10, 0} - P).y;
-    expect_vec(trace_down(scene, {5, 0.5f, 0}), Rgb{0.1f + 0.45f * cos_theta});
+    expect_vec(trace_down(scene, d, {5, 0.5f, 0}), Rgb{0.1f + 0.45f * cos_theta});
 }
 
 TEST(Shadows, GlassSphereTransmitsTransparencySquared) {
@@ -113,9 +114,9 @@ TEST(Shadows, GlassSphereTransmitsTransparencySquared) {
     d.materials.push_back(glass);
     d.lights.push_back({Vec3{0, 10, 0}, Rgb{1.0f}, 0});
     d.objects = {floor_plane(), sphere({0, 3, 0}, 1, 1)};
-    const Scene scene = build_scene(d);
+    const BuiltScene scene = build_scene(d);
     TraceCounters c;
-    const Rgb I = trace_down(scene, {0, 0.5f, 0}, &c);
+    const Rgb I = trace_down(scene, d, {0, 0.5f, 0}, &c);
     // vis = 0.6 · 0.6 (the shadow ray enters and leaves the sphere).
     expect_vec(I, Rgb{0.1f + 0.36f * 0.45f});
     EXPECT_EQ(c.shadow, 1u);
@@ -125,8 +126,8 @@ TEST(Planes, LitFromBelowAndSeenFromBelow) {
     SceneDesc d = empty_scene();
     d.lights.push_back({Vec3{0, -4, 0}, Rgb{1.0f}, 0});
     d.objects = {floor_plane()};
-    const Scene scene = build_scene(d);
-    const RayTracer tracer(scene, true);
+    const BuiltScene scene = build_scene(d);
+    const RayTracer tracer(scene, d, true);
     TraceCounters c;
     float dist;
     // Seen from below, lit from below: the normal flips towards the viewer.
@@ -134,7 +135,7 @@ TEST(Planes, LitFromBelowAndSeenFromBelow) {
     expect_vec(below, Rgb{0.1f + 0.45f});
     EXPECT_NEAR(dist, 1.0f, 1e-6f);
     // Seen from above, the light below does not reach the viewer's side.
-    expect_vec(trace_down(scene, {0, 1, 0}), Rgb{0.1f});
+    expect_vec(trace_down(scene, d, {0, 1, 0}), Rgb{0.1f});
 }
 
 TEST(LightSpheres, SeenDirectlyAndInAMirrorNeverCastingShadows) {
@@ -147,8 +148,8 @@ TEST(LightSpheres, SeenDirectlyAndInAMirrorNeverCastingShadows) {
     d.materials.push_back(mirror);
     d.lights.push_back({Vec3{0, 3, 0}, Rgb{2.0f, 0.5f, 0.25f}, 0.5f});
     d.objects = {floor_plane(1)};
-    const Scene scene = build_scene(d);
-    const RayTracer tracer(scene, true);
+    const BuiltScene scene = build_scene(d);
+    const RayTracer tracer(scene, d, true);
     TraceCounters c;
     float dist;
     // Directly: the light's intensity clamped to [0, 1].
@@ -163,8 +164,8 @@ TEST(LightSpheres, SeenDirectlyAndInAMirrorNeverCastingShadows) {
     expect_vec(seen, Rgb{0.5f, 0.25f, 0.125f});
     // A floor point right under the light is lit by it (the sphere does not block).
     d.materials[1] = Material{};
-    const Scene lit = build_scene(d);
-    const Rgb under = trace_down(lit, {0, 1, 0.2f});
+    const BuiltScene lit = build_scene(d);
+    const Rgb under = trace_down(lit, d, {0, 1, 0.2f});
     EXPECT_GT(under.x, 0.1f + 0.4f);
 }
 
@@ -178,21 +179,21 @@ TEST(RayTree, ReflectionAddsTheMirroredColourAndMaxDepthCutsIt) {
     d.objects = {floor_plane(1)};
     const Rgb local{0.1f + 0.45f};
     {
-        const Scene scene = build_scene(d);
-        expect_vec(trace_down(scene, {0, 1, 0}), local + Rgb{0.2f, 0.4f, 0.6f} * 0.5f);
+        const BuiltScene scene = build_scene(d);
+        expect_vec(trace_down(scene, d, {0, 1, 0}), local + Rgb{0.2f, 0.4f, 0.6f} * 0.5f);
     }
     d.render.max_depth = 0;
     {
-        const Scene scene = build_scene(d);
+        const BuiltScene scene = build_scene(d);
         TraceCounters c;
-        expect_vec(trace_down(scene, {0, 1, 0}, &c), local);
+        expect_vec(trace_down(scene, d, {0, 1, 0}, &c), local);
         EXPECT_EQ(c.reflection, 0u);
     }
     d.render.max_depth = 5;
     d.render.tree_attenuation = true;  // a reflected ray into the void contributes nothing
     {
-        const Scene scene = build_scene(d);
-        expect_vec(trace_down(scene, {0, 1, 0}), local);
+        const BuiltScene scene = build_scene(d);
+        expect_vec(trace_down(scene, d, {0, 1, 0}), local);
     }
 }
 
@@ -207,8 +208,8 @@ TEST(RayTree, TreeAttenuationDividesBySegmentLengthPlusK) {
     d.render.tree_attenuation = true;
     d.lights.push_back({Vec3{0.25f, 0.5f, 0}, Rgb{0.8f}, 0.1f});  // a light sphere to look at
     d.objects = {floor_plane(1)};
-    const Scene scene = build_scene(d);
-    const RayTracer tracer(scene, true);
+    const BuiltScene scene = build_scene(d);
+    const RayTracer tracer(scene, d, true);
     TraceCounters c;
     float dist;
     // From (1, 1, 0) to the mirror at (0.5, 0, 0); the reflected ray (−0.5, 1, 0) passes
@@ -231,10 +232,10 @@ TEST(Refraction, ARayThroughAGlassSphereComesOutAndGoesOn) {
     d.materials.push_back(glass);
     d.lights.push_back({Vec3{0, -3, 0}, Rgb{0.7f, 0.6f, 0.5f}, 0.5f});
     d.objects = {sphere({0, 0, 0}, 1, 1)};
-    const Scene scene = build_scene(d);
+    const BuiltScene scene = build_scene(d);
     TraceCounters c;
     // Straight through the centre: no bending; enters, leaves and meets the light sphere.
-    const Rgb I = trace_down(scene, {0, 5, 0}, &c);
+    const Rgb I = trace_down(scene, d, {0, 5, 0}, &c);
     expect_vec(I, Rgb{0.7f, 0.6f, 0.5f});
     EXPECT_EQ(c.refraction, 2u);
     // Off-centre rays bend towards the axis inside and away outside: a ray at x = 0.3 comes
@@ -260,12 +261,13 @@ TEST(Pipelines, RaycastEqualsZbufferUpToTessellation) {
     // SPEC: demo:primitives through both pipelines with a fine tessellation agree on at least
     // 99 % of pixels within 2/255.
     SceneDesc d = load_scene("demo:primitives", {{"render.tessellation", "512"}});
-    const Scene zb = build_scene(d);
+    const SceneDesc dz = d;
+    const BuiltScene zb = build_scene(d);
     d.render.pipeline = Pipeline::raycast;
-    const Scene rc = build_scene(d);
+    const BuiltScene rc = build_scene(d);
     RenderStats s1, s2;
     RenderControl control;
-    const Image a = render(zb, control, s1), b = render(rc, control, s2);
+    const Image a = render(zb, dz, control, s1), b = render(rc, d, control, s2);
     const double share = fraction_within(a, b, 2.0f / 255);
     EXPECT_GE(share, 0.99);
     RecordProperty("share_within_2_255", std::to_string(share));
@@ -273,12 +275,12 @@ TEST(Pipelines, RaycastEqualsZbufferUpToTessellation) {
 
 TEST(Pipelines, RaytraceGivesTheSameBitsForAnyThreadCount) {
     SceneDesc d = load_scene("demo:whitted", {{"image.width", "203"}, {"image.height", "151"}});
-    const Scene scene = build_scene(d);
+    const BuiltScene scene = build_scene(d);
     RenderStats s1, s2;
     RenderControl one, two;
     one.threads = 1;
     two.threads = 2;
-    const Image a = render(scene, one, s1), b = render(scene, two, s2);
+    const Image a = render(scene, d, one, s1), b = render(scene, d, two, s2);
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
     EXPECT_EQ(0, std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)));
     EXPECT_EQ(s1.rays_shadow, s2.rays_shadow);

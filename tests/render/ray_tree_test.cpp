@@ -10,9 +10,9 @@
 namespace luz {
 namespace {
 
-Scene whitted(int w, int h) {
-    return build_scene(load_scene(
-        "demo:whitted", {{"image.width", std::to_string(w)}, {"image.height", std::to_string(h)}}));
+SceneDesc whitted(int w, int h) {
+    return load_scene("demo:whitted",
+                      {{"image.width", std::to_string(w)}, {"image.height", std::to_string(h)}});
 }
 
 void expect_adds_up(const RayTree& tree, int i) {
@@ -38,13 +38,14 @@ void expect_adds_up(const RayTree& tree, int i) {
 }
 
 TEST(RayTreeRecording, PrimaryColourIsThePixelsAndTermsAddUp) {
-    const Scene scene = whitted(64, 48);
+    const SceneDesc d = whitted(64, 48);
+    const BuiltScene scene = build_scene(d);
     RenderStats stats;
-    const Image img = render(scene, RenderControl{}, stats);
+    const Image img = render(scene, d, RenderControl{}, stats);
     int with_children = 0;
     for (int y = 0; y < 48; y += 3) {
         for (int x = 0; x < 64; x += 3) {
-            const RayTree tree = trace_ray_tree(scene, x + 0.5f, y + 0.5f);
+            const RayTree tree = trace_ray_tree(scene, d, x + 0.5f, y + 0.5f);
             ASSERT_FALSE(tree.nodes.empty());
             EXPECT_EQ(tree.nodes[0].color, img.at(x, y)) << x << "," << y;
             expect_adds_up(tree, 0);
@@ -55,20 +56,22 @@ TEST(RayTreeRecording, PrimaryColourIsThePixelsAndTermsAddUp) {
 }
 
 TEST(RayTreeRecording, RecordsGlassRefractionAndShadowVisibility) {
-    const Scene scene = whitted(160, 120);
-    const RayTree tree = trace_ray_tree(scene, 98.5f, 70.5f);  // on the glass sphere
+    const SceneDesc d = whitted(160, 120);
+    const BuiltScene scene = build_scene(d);
+    const RayTree tree = trace_ray_tree(scene, d, 98.5f, 70.5f);  // on the glass sphere
     ASSERT_GE(tree.nodes.size(), 3u);
     EXPECT_EQ(tree.nodes[0].hit, RayHit::object);
     EXPECT_GE(tree.nodes[0].refraction_child, 0);
     EXPECT_GE(tree.nodes[0].reflection_child, 0);
     EXPECT_EQ(tree.nodes[tree.nodes[0].refraction_child].kind, RayKind::refraction);
-    EXPECT_EQ(tree.nodes[0].lights.size(), scene.desc.lights.size());
+    EXPECT_EQ(tree.nodes[0].lights.size(), d.lights.size());
     EXPECT_FALSE(tree.raycast_for_zbuffer);
 }
 
 TEST(RayTreeRecording, ZbufferSceneIsTracedAsRaycast) {
-    const Scene scene = build_scene(load_scene("demo:primitives"));
-    const RayTree tree = trace_ray_tree(scene, 400.5f, 300.5f);
+    const SceneDesc d = load_scene("demo:primitives");
+    const BuiltScene scene = build_scene(d);
+    const RayTree tree = trace_ray_tree(scene, d, 400.5f, 300.5f);
     EXPECT_TRUE(tree.raycast_for_zbuffer);
     ASSERT_EQ(tree.nodes.size(), 1u) << "depth 0: no secondary rays";
     for (const LightTerm& l : tree.nodes[0].lights) EXPECT_EQ(l.visibility, 1.0f);

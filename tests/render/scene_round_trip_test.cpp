@@ -1,4 +1,4 @@
-// Scene writer round trip: load → save → load gives the same description (the same JSON when
+// BuiltScene writer round trip: load → save → load gives the same description (the same JSON when
 // saved again) and the same image bits; meshes keep their files.
 #include <gtest/gtest.h>
 
@@ -31,7 +31,7 @@ struct TempFolder {
 
 Image render_of(const SceneDesc& d) {
     RenderStats stats;
-    return render(build_scene(d), RenderControl{}, stats);
+    return render(build_scene(d), d, RenderControl{}, stats);
 }
 
 void expect_round_trip(const std::string& source, const std::vector<Override>& overrides,

@@ -40,11 +40,11 @@ ObjectDesc sphere(Vec3 center, float radius) {
 }
 
 Image render_desc(const SceneDesc& d, int threads = 1, RenderStats* stats_out = nullptr) {
-    const Scene scene = build_scene(d);
+    const BuiltScene scene = build_scene(d);
     RenderStats stats;
     RenderControl control;
     control.threads = threads;
-    Image img = render(scene, control, stats);
+    Image img = render(scene, d, control, stats);
     if (stats_out) *stats_out = stats;
     return img;
 }
@@ -55,7 +55,7 @@ bool is_background(const Rgb& c) { return c == Rgb{0.0f, 0.0f, 1.0f}; }
 // the closed form at a fine tessellation".
 TEST(Zbuffer, OrthographicSphereMatchesTheClosedFormAtEveryCoveredPixel) {
     SceneDesc d = base_scene(160, 160);
-    d.render.tessellation = 720;
+    d.geometry.tessellation = 720;
     d.lights.push_back({Vec3{0, 0, 10}, Rgb{10.0f}, 0});
     d.objects.push_back(sphere({0, 0, 0}, 1));
     const Image img = render_desc(d, 2);
@@ -171,7 +171,7 @@ TEST(Zbuffer, OrthographicFloorCellsArePrecise) {
 
 TEST(Zbuffer, CoarseSphereHasNoCracks) {
     SceneDesc d = base_scene(200, 200);
-    d.render.tessellation = 12;
+    d.geometry.tessellation = 12;
     d.objects.push_back(sphere({0, 0, 0}, 1));
     const Image img = render_desc(d);
     const Camera cam = Camera::from(d.camera, 200, 200);

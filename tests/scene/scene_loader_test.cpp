@@ -51,8 +51,8 @@ TEST(SceneLoader, DefaultsOfTheSmallestScene) {
     EXPECT_EQ(s.render.model, Model::phong);
     EXPECT_EQ(s.render.max_depth, 5);
     EXPECT_FALSE(s.render.tree_attenuation);
-    EXPECT_EQ(s.render.tessellation, 64);
-    EXPECT_EQ(s.render.accel, Accel::bvh);
+    EXPECT_EQ(s.geometry.tessellation, 64);
+    EXPECT_EQ(s.geometry.accel, Accel::bvh);
     EXPECT_EQ(s.render.antialias.mode, AaMode::none);
     EXPECT_EQ(s.render.antialias.samples, 4);
     EXPECT_EQ(s.render.antialias.filter, AaFilter::box);
@@ -138,8 +138,8 @@ TEST(SceneLoader, EveryKeyIsReadIntoItsField) {
     EXPECT_EQ(s.render.model, Model::lambert);
     EXPECT_EQ(s.render.max_depth, 7);
     EXPECT_TRUE(s.render.tree_attenuation);
-    EXPECT_EQ(s.render.tessellation, 12);
-    EXPECT_EQ(s.render.accel, Accel::none);
+    EXPECT_EQ(s.geometry.tessellation, 12);
+    EXPECT_EQ(s.geometry.accel, Accel::none);
     EXPECT_EQ(s.render.antialias.mode, AaMode::adaptive);
     EXPECT_EQ(s.render.antialias.samples, 9);
     EXPECT_EQ(s.render.antialias.filter, AaFilter::tent);

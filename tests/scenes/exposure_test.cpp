@@ -64,9 +64,9 @@ class DefaultExposure : public testing::TestWithParam<std::string> {};
 
 TEST_P(DefaultExposure, IsWellExposed) {
     const SceneDesc desc = load_scene("demo:" + GetParam());
-    const Scene scene = build_scene(desc);
+    const BuiltScene scene = build_scene(desc);
     RenderStats stats;
-    const Image img = render(scene, RenderControl{}, stats);
+    const Image img = render(scene, desc, RenderControl{}, stats);
     ASSERT_EQ(img.width, desc.image.width);
     ASSERT_EQ(img.height, desc.image.height);
 

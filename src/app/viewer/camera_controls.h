@@ -1,7 +1,7 @@
 // Camera controls of the viewer: orbit about look_at, pan in the view plane, zoom.
 #pragma once
 
-#include "scene/scene_desc.h"
+#include "luz/luz.h"
 
 namespace luz {
 

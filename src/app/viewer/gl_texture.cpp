@@ -3,7 +3,7 @@
 
 #include <SDL_opengl.h>
 
-#include "image/image_io.h"
+#include "luz/luz.h"
 
 namespace luz {
 

@@ -4,8 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "image/image.h"
-#include "scene/scene_desc.h"
+#include "luz/luz.h"
 
 namespace luz {
 

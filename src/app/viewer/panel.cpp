@@ -40,8 +40,8 @@ bool render_section(SceneDesc& d) {
     changed |= edit_enum("model", r.model, {"lambert", "phong"});
     changed |= ImGui::SliderInt("max depth", &r.max_depth, 0, 16);
     changed |= ImGui::Checkbox("tree attenuation", &r.tree_attenuation);
-    changed |= ImGui::SliderInt("tessellation", &r.tessellation, 3, 512);
-    changed |= edit_enum("accel", r.accel, {"bvh", "none"});
+    changed |= ImGui::SliderInt("tessellation", &d.geometry.tessellation, 3, 512);
+    changed |= edit_enum("accel", d.geometry.accel, {"bvh", "none"});
     AntialiasDesc& aa = r.antialias;
     changed |= edit_enum("antialias", aa.mode, {"none", "grid", "adaptive"});
     if (aa.mode == AaMode::grid) {

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "app/viewer/render_worker.h"
-#include "scene/scene_desc.h"
+#include "luz/luz.h"
 
 namespace luz {
 

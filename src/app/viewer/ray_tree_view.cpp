@@ -3,8 +3,7 @@
 
 #include <cmath>
 
-#include "app/viewer/ray_tree_json.h"
-#include "scene/camera.h"
+#include "luz/luz.h"
 
 namespace luz {
 

@@ -4,8 +4,7 @@
 
 #include <imgui.h>
 
-#include "render/ray_tree.h"
-#include "scene/scene_desc.h"
+#include "luz/luz.h"
 
 namespace luz {
 

@@ -3,7 +3,7 @@
 
 #include <chrono>
 
-#include "render/render.h"
+#include "luz/luz.h"
 
 namespace luz {
 
@@ -17,7 +17,7 @@ int64_t now_ns() {
 
 }  // namespace
 
-std::vector<PassPlan> plan_passes(const SceneDesc& desc) {
+std::vector<PassPlan> plan_passes(const Settings& desc) {
     std::vector<PassPlan> plan;
     const int smaller = std::min(desc.image.width, desc.image.height);
     if (smaller >= 64) plan.push_back({8, false});
@@ -27,32 +27,28 @@ std::vector<PassPlan> plan_passes(const SceneDesc& desc) {
     return plan;
 }
 
-bool render_pass(Scene& scene, const PassPlan& plan, int threads, const std::atomic<bool>* cancel,
-                 RenderFrame& out) {
-    // The pass's resolution and antialiasing, on the scene's own description (restored below):
-    // the shapes and the BVH do not depend on them.
-    ImageDesc& image = scene.desc.image;
-    AntialiasDesc& aa = scene.desc.render.antialias;
-    const ImageDesc image_kept = image;
-    const AntialiasDesc aa_kept = aa;
-    image.width = std::max(1, image.width / plan.divisor);
-    image.height = std::max(1, image.height / plan.divisor);
-    if (!plan.antialiased) aa.mode = AaMode::none;
+bool render_pass(const Scene& scene, const Settings& settings, const PassPlan& plan, int threads,
+                 const std::atomic<bool>* cancel, RenderFrame& out) {
+    // The pass's resolution and antialiasing, on a copy of the settings: the scene (shapes,
+    // BVH) does not depend on them.
+    Settings pass = settings;
+    pass.image.width = std::max(1, settings.image.width / plan.divisor);
+    pass.image.height = std::max(1, settings.image.height / plan.divisor);
+    if (!plan.antialiased) pass.render.antialias.mode = AaMode::none;
 
-    RenderControl control;
-    control.threads = threads;
-    control.cancel = cancel;
-    RenderStats stats;
-    out.image = render(scene, control, stats);
-    image = image_kept;
-    aa = aa_kept;
+    RenderOptions options;
+    options.control.threads = threads;
+    options.control.cancel = cancel;
+    Frame frame = render(scene, pass, options);
+    out.image = std::move(frame.image);
     out.divisor = plan.divisor;
     out.antialiased = plan.antialiased;
-    out.seconds = stats.seconds;
+    out.seconds = frame.stats.seconds;
+    const RenderStats& stats = frame.stats;
     const uint64_t rays =
         stats.rays_primary + stats.rays_shadow + stats.rays_reflection + stats.rays_refraction;
     out.rays = rays > 0 ? rays : stats.samples;
-    return !(cancel && cancel->load());
+    return frame.complete;
 }
 
 RenderWorker::RenderWorker(int threads) : threads_(threads) {
@@ -69,11 +65,11 @@ RenderWorker::~RenderWorker() {
     thread_.join();
 }
 
-uint64_t RenderWorker::submit(std::shared_ptr<Scene> scene) {
+uint64_t RenderWorker::submit(Scene scene, Settings settings) {
     uint64_t g;
     {
         std::lock_guard lock(mutex_);
-        pending_ = std::move(scene);
+        pending_ = Job{std::move(scene), std::move(settings)};
         g = ++generation_;
         cancel_requested_ns_ = now_ns();
         cancel_ = true;  // the render under way stops at its next tile
@@ -91,24 +87,24 @@ bool RenderWorker::take_frame(RenderFrame& out) {
 }
 
 void RenderWorker::run() {
-    std::shared_ptr<Scene> scene;
+    std::optional<Job> job;
     uint64_t generation = 0;
     for (;;) {
         {
             std::unique_lock lock(mutex_);
-            wake_.wait(lock, [&] { return quit_ || pending_; });
+            wake_.wait(lock, [&] { return quit_ || pending_.has_value(); });
             if (quit_) return;
-            scene = std::move(pending_);
+            job = std::move(pending_);
             pending_.reset();
             generation = generation_;
             cancel_ = false;
         }
-        const std::vector<PassPlan> plan = plan_passes(scene->desc);
+        const std::vector<PassPlan> plan = plan_passes(job->settings);
         bool finished = true;
         double first_seconds = 0;
         for (size_t i = 0; i < plan.size(); ++i) {
             RenderFrame frame;
-            if (!render_pass(*scene, plan[i], threads_, &cancel_, frame)) {
+            if (!render_pass(job->scene, job->settings, plan[i], threads_, &cancel_, frame)) {
                 cancel_latency_ =
                     static_cast<double>(now_ns() - cancel_requested_ns_.load()) * 1e-9;
                 ++cancelled_;

@@ -8,12 +8,11 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
-#include "geometry/scene.h"
-#include "image/image.h"
-#include "render/stats.h"
+#include "luz/luz.h"
 
 namespace luz {
 
@@ -35,12 +34,12 @@ struct PassPlan {
     int divisor;
     bool antialiased;
 };
-std::vector<PassPlan> plan_passes(const SceneDesc& desc);
+std::vector<PassPlan> plan_passes(const Settings& settings);
 
-/// Renders one pass of `scene` (its desc's image size and antialiasing changed for the pass and
-/// restored); returns false when cancelled.
-bool render_pass(Scene& scene, const PassPlan& plan, int threads, const std::atomic<bool>* cancel,
-                 RenderFrame& out);
+/// Renders one pass of `scene` with `settings` (their image size and antialiasing changed for
+/// the pass on a copy); returns false when cancelled.
+bool render_pass(const Scene& scene, const Settings& settings, const PassPlan& plan, int threads,
+                 const std::atomic<bool>* cancel, RenderFrame& out);
 
 class RenderWorker {
   public:
@@ -49,9 +48,9 @@ class RenderWorker {
     RenderWorker(const RenderWorker&) = delete;
     RenderWorker& operator=(const RenderWorker&) = delete;
 
-    /// Cancels the render under way and starts rendering `scene` from the coarsest pass;
-    /// returns the new generation.
-    uint64_t submit(std::shared_ptr<Scene> scene);
+    /// Cancels the render under way and starts rendering `scene` with `settings` from the
+    /// coarsest pass; returns the new generation.
+    uint64_t submit(Scene scene, Settings settings);
 
     /// Moves the newest finished pass not taken yet into `out`; false when there is none.
     bool take_frame(RenderFrame& out);
@@ -71,7 +70,12 @@ class RenderWorker {
     int threads_;
     mutable std::mutex mutex_;
     std::condition_variable wake_;
-    std::shared_ptr<Scene> pending_;  ///< the newest scene, not yet picked up
+    /// The newest scene and settings, not yet picked up.
+    struct Job {
+        Scene scene;
+        Settings settings;
+    };
+    std::optional<Job> pending_;
     bool quit_ = false;
     std::atomic<bool> cancel_{false};
     std::atomic<uint64_t> generation_{0}, done_generation_{0};

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "image/image_io.h"
+#include "luz/luz.h"
 
 namespace luz {
 

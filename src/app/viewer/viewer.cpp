@@ -19,19 +19,10 @@
 #include "app/viewer/camera_controls.h"
 #include "app/viewer/gl_texture.h"
 #include "app/viewer/panel.h"
-#include "app/viewer/ray_tree_json.h"
 #include "app/viewer/ray_tree_view.h"
 #include "app/viewer/render_worker.h"
 #include "app/viewer/screenshot.h"
-#include "geometry/scene.h"
-#include "image/atomic_file.h"
-#include "image/image_io.h"
-#include "render/parallel.h"
-#include "render/ray_tree.h"
-#include "render/render.h"
-#include "scene/input_error.h"
-#include "scene/scene_loader.h"
-#include "scene/scene_writer.h"
+#include "luz/luz.h"
 
 namespace luz {
 
@@ -63,7 +54,7 @@ class Viewer {
   public:
     Viewer(const ViewOptions& o, SceneDesc desc)
         : options_(o),
-          desc_(std::move(desc)),
+          edit_(std::move(desc)),
           camera0_(desc_.camera),
           worker_(resolve_threads(o.threads)) {
         panel_.image_path = desc_.name + ".png";
@@ -90,7 +81,8 @@ class Viewer {
     bool image_rect(float& x0, float& y0, float& scale) const;
 
     ViewOptions options_;
-    SceneDesc desc_;
+    EditableScene edit_;  ///< the edited description and the Scene built from it
+    SceneDesc& desc_ = edit_.desc();
     CameraDesc camera0_;
     RenderWorker worker_;
     SDL_Window* window_ = nullptr;
@@ -179,13 +171,13 @@ void Viewer::close_window() {
 
 void Viewer::apply_edits() {
     dirty_ = false;
-    generation_ = worker_.submit(std::make_shared<Scene>(build_scene(desc_)));
+    // Rebuilt only when the edit needs it (objects, tessellation, accel): light, material,
+    // camera and render-setting edits reuse the scene, its geometry and its BVH.
+    const Scene& scene = edit_.scene();
+    generation_ = worker_.submit(scene, desc_);
     final_shown_ = false;
     have_full_ = false;
-    if (selected_) {
-        const Scene scene = build_scene(desc_);
-        tree_ = trace_ray_tree(scene, sel_x_ + 0.5f, sel_y_ + 0.5f);
-    }
+    if (selected_) tree_ = ray_tree(scene, desc_, sel_x_ + 0.5f, sel_y_ + 0.5f);
 }
 
 bool Viewer::image_rect(float& x0, float& y0, float& scale) const {
@@ -301,8 +293,7 @@ void Viewer::handle_event(const SDL_Event& e) {
                 sel_y_ = std::clamp(static_cast<int>((press_y_ - y0) / scale), 0,
                                     desc_.image.height - 1);
                 selected_ = true;
-                const Scene scene = build_scene(desc_);
-                tree_ = trace_ray_tree(scene, sel_x_ + 0.5f, sel_y_ + 0.5f);
+                tree_ = ray_tree(edit_.scene(), desc_, sel_x_ + 0.5f, sel_y_ + 0.5f);
             }
             drag_button_ = 0;
             break;
@@ -318,11 +309,9 @@ void Viewer::handle_event(const SDL_Event& e) {
 
 void Viewer::save_image() {
     try {
-        RenderStats stats;
-        const Scene scene = build_scene(desc_);
-        const Image img =
-            render(scene, RenderControl{options_.threads, {}, nullptr, nullptr}, stats);
-        write_image(panel_.image_path, img, desc_.image.encoding);
+        RenderOptions options;
+        options.control.threads = options_.threads;
+        write_frame(render(edit_.scene(), desc_, options), panel_.image_path, desc_.image.encoding);
         panel_.status = "wrote " + panel_.image_path;
     } catch (const std::exception& e) {
         panel_.status = std::string("cannot save the image: ") + e.what();

@@ -1,5 +1,5 @@
 // Ray tree → JSON.
-#include "app/viewer/ray_tree_json.h"
+#include "api/ray_tree_json.h"
 
 #include <cmath>
 #include <nlohmann/json.hpp>

@@ -1,5 +1,5 @@
 // The memory check made before rendering: estimate, limit, and the refusal message.
-#include "app/memory_check.h"
+#include "api/memory_check.h"
 
 #include <unistd.h>
 
@@ -62,7 +62,7 @@ MemoryEstimate estimate_memory(const SceneDesc& desc) {
     }
     // Per triangle: tessellated (3 vertices with normals, projected copies, bins) ~ 160 bytes;
     // a mesh triangle (shared vertices, indices, material, BVH node share and leaf copy) ~ 192.
-    const uint64_t t = uint64_t(desc.render.tessellation < 0 ? 0 : desc.render.tessellation);
+    const uint64_t t = uint64_t(desc.geometry.tessellation < 0 ? 0 : desc.geometry.tessellation);
     for (const ObjectDesc& o : desc.objects) {
         if (o.type == ShapeType::mesh) {
             if (o.mesh) e.geometry += uint64_t(o.mesh->triangle_count()) * 192;
@@ -101,7 +101,7 @@ void check_memory(const SceneDesc& desc, std::optional<uint64_t> limit) {
                 desc.objects[size_t(index)].file + " (" + std::to_string(most) + " triangles)";
         } else {
             key = "render.tessellation";
-            subject = "tessellation " + std::to_string(desc.render.tessellation);
+            subject = "tessellation " + std::to_string(desc.geometry.tessellation);
         }
     }
     throw InputError(desc.source + ": " + key + ": " + subject + " needs " + bytes_text(need) +

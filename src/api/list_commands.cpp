@@ -1,5 +1,5 @@
 // `luz scenes` and `luz materials`: listings of demo_scenes() and presets().
-#include "app/list_commands.h"
+#include "api/list_commands.h"
 
 #include <algorithm>
 #include <string>

@@ -1,5 +1,5 @@
 // `--stats FILE`: RenderStats to JSON.
-#include "app/stats_json.h"
+#include "api/stats_json.h"
 
 #include <sys/resource.h>
 
@@ -57,7 +57,7 @@ nlohmann::json stats_to_json(const RenderStats& s, const SceneDesc& desc) {
         {"samples", s.samples},
         {"triangles", s.triangles},
         {"bvh_nodes", s.bvh_nodes},
-        {"accel", desc.render.accel == Accel::bvh ? "bvh" : "none"},
+        {"accel", desc.geometry.accel == Accel::bvh ? "bvh" : "none"},
         {"bvh_build_seconds", s.bvh_build_seconds},
         {"bvh_bytes", s.bvh_bytes},
         {"intersection_time",

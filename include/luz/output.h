@@ -1,0 +1,41 @@
+// luz's public API, part 3: outputs. A frame to an image file (PNG, PPM, PFM, EXR by extension,
+// written atomically), its statistics as JSON, and the checks made before a long render.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "api/memory_check.h"
+#include "api/ray_tree_json.h"
+#include "api/stats_json.h"
+#include "image/atomic_file.h"
+#include "image/image_io.h"
+#include "luz/render.h"
+
+namespace luz {
+
+/// Checks before any work that `path` can take an image: a known extension (.png, .ppm, .pfm,
+/// .exr) and an existing folder. `origin` names the option in messages (e.g. "-o").
+/// Throws SceneError.
+void check_output_path(const std::string& path, const char* origin);
+
+/// Checks before any work that `path` can be written (its folder exists, it is not a folder).
+void check_writable_target(const std::string& path, const char* origin);
+
+/// The bytes of the image file `path` names (format by extension; 8-bit formats encoded with
+/// `encoding`, float formats raw).
+std::string encode_frame(const Frame& frame, const std::string& path, Encoding encoding);
+
+/// Writes the frame's image to `path` atomically (a temporary file renamed into place: a
+/// failure leaves no file and never truncates an existing one). Throws FileError.
+void write_frame(const Frame& frame, const std::string& path, Encoding encoding);
+
+/// The --stats JSON text of a frame rendered from `desc` (the description whose settings
+/// were rendered: its pipeline, model, antialiasing, source and accel are reported).
+std::string frame_stats_json(const Frame& frame, const SceneDesc& desc);
+
+/// The --aa-mask picture of a frame rendered with RenderOptions::want_aa_mask.
+Image frame_aa_mask(const Frame& frame);
+
+}  // namespace luz

@@ -1,0 +1,53 @@
+// luz's public API, part 2: rendering. render(scene, settings) → Frame: the float image, the
+// per-term images asked for and the statistics; and a pixel's ray tree.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "image/image.h"
+#include "luz/scene.h"
+#include "render/parallel.h"  // resolve_threads()
+#include "render/progress.h"  // ProgressBar: a terminal progress bar
+#include "render/ray_tree.h"
+#include "render/render.h"
+#include "render/sampler.h"
+#include "render/stats.h"
+#include "scene/camera.h"  // Camera: rays and projection of SPEC §1.3
+
+namespace luz {
+
+/// A per-term image (SPEC §1.5): its name (`ambient`, `diffuse`, … `tests`) and its pixels.
+struct Aov {
+    std::string name;
+    Image image;
+};
+
+/// What one render made.
+struct Frame {
+    Image image;            ///< linear float RGB, unclamped, row 0 on top
+    std::vector<Aov> aovs;  ///< the per-term images asked for (none yet: SPEC §1.5 to come)
+    RenderStats stats;      ///< what --stats writes (api/stats_json.h)
+    AaMask aa_mask;         ///< which pixels adaptive antialiasing refined (when asked)
+    bool complete = false;  ///< false when the render was cancelled (the image is then
+                            ///< incomplete: write nothing)
+};
+
+/// What a render needs beyond the settings: threads, progress, cancellation, the refinement
+/// mask (render/render.h's RenderControl; `aa_mask` there is ignored: ask with `want_aa_mask`).
+struct RenderOptions {
+    RenderControl control;
+    bool want_aa_mask = false;  ///< fill Frame::aa_mask
+};
+
+/// Renders `scene` with `settings` (a SceneDesc is a Settings: pass it as it is, or an edited
+/// copy). Builds the scene's BVH first if this is its first ray-traced render. Throws
+/// SceneError when the settings do not fit the scene (fewer materials than its objects use).
+Frame render(const Scene& scene, const Settings& settings, const RenderOptions& options = {});
+
+/// The ray tree of the sample at pixel-space point (px, py) (the pixel's centre is
+/// (i + 0.5, j + 0.5)): every ray traced for it with the numbers shade() and trace() used.
+/// In the zbuffer pipeline, the primary hit traced as raycast.
+RayTree ray_tree(const Scene& scene, const Settings& settings, float px, float py);
+
+}  // namespace luz

@@ -1,0 +1,119 @@
+// luz's public API, part 1: scenes. Load a description (a file, demo:NAME, JSON text or a
+// parsed JSON value, with --set-style overrides), then build it once into a Scene.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "api/list_commands.h"  // print_scenes(), print_materials(): `luz scenes`, `luz materials`
+#include "scene/demo_scenes.h"
+#include "scene/input_error.h"
+#include "scene/obj_loader.h"  // set_max_text_file_bytes(): the cap on a mesh file
+#include "scene/presets.h"
+#include "scene/scene_desc.h"
+#include "scene/scene_loader.h"
+#include "scene/scene_writer.h"  // write_scene(): a description back to JSON
+
+namespace luz {
+
+struct BuiltScene;
+
+/// Bad input: the message is one line naming the file (or `<dict>`, `--set …`) and the place
+/// (line:column or key path). Every API call reports bad input with it; none ends the process.
+using SceneError = InputError;
+
+/// Loads `source` — a scene file or "demo:NAME" — and applies `overrides` in order (as
+/// `--set PATH=JSON` does), validated once (SPEC §2). Throws SceneError.
+SceneDesc load_scene(const std::string& source, const std::vector<Override>& overrides);
+
+/// The same from JSON text: `label` names it in messages, `base_dir` resolves mesh paths.
+SceneDesc parse_scene(std::string_view json_text, const std::string& label,
+                      const std::string& base_dir, const std::vector<Override>& overrides);
+
+/// The same from a parsed JSON value (e.g. a Python dict); messages name `label` and key paths.
+SceneDesc load_scene_value(const nlohmann::ordered_json& value, const std::string& label,
+                           const std::string& base_dir,
+                           const std::vector<Override>& overrides = {});
+
+/// Parses one "PATH=JSON" as given to --set. Throws SceneError when malformed.
+Override parse_set(const std::string& arg);
+
+/// How often a Scene's parts were built: a test of "edits rebuild nothing they need not".
+struct BuildCounts {
+    int geometry = 0;  ///< shapes placed, meshes transformed (build())
+    int bvh = 0;       ///< BVH builds (the first ray-pipeline render with accel bvh)
+};
+
+/// A scene built for rendering: its shapes, meshes and (once a ray pipeline needs it) BVH.
+/// Cheap to copy (shared and immutable); any number of threads may render it at once with
+/// different Settings. What needs a build is the description's objects and `geometry`
+/// (tessellation, accel); everything in Settings may change from one render to the next.
+class Scene {
+  public:
+    Scene() = default;
+
+    /// True once built.
+    explicit operator bool() const { return state_ != nullptr; }
+
+    /// The runtime scene (library internals: geometry/scene.h).
+    const BuiltScene& built() const;
+
+    /// How often its parts were built so far.
+    BuildCounts build_counts() const;
+
+    /// Builds the BVH now if `pipeline` traces rays with it and it is not built yet (render()
+    /// does this itself; thread-safe).
+    void prepare(Pipeline pipeline) const;
+
+    /// Number of materials the objects refer to: a render's Settings must have at least these.
+    size_t material_count() const;
+
+    struct State;  ///< shared by copies (api/scene.cpp)
+
+  private:
+    friend Scene build(const SceneDesc& desc);
+    std::shared_ptr<State> state_;
+};
+
+/// Builds the geometry of a validated description (its objects, tessellation and accel).
+Scene build(const SceneDesc& desc);
+
+/// True when `a` and `b` differ in what needs a build (objects, tessellation, accel), so that
+/// a Scene built from `a` cannot render `b`'s settings as they are meant.
+bool needs_rebuild(const SceneDesc& a, const SceneDesc& b);
+
+/// The settings part of a description (a copy: edit it, render with it, no rebuild).
+inline Settings settings_of(const SceneDesc& desc) { return desc; }
+
+/// A scene being edited (the viewer, a notebook): its description, free to change, and the
+/// Scene built from it, rebuilt by scene() only when an edit needs it (needs_rebuild()): a
+/// light, material, camera or render-setting edit rebuilds nothing.
+class EditableScene {
+  public:
+    explicit EditableScene(SceneDesc desc) : desc_(std::move(desc)) {}
+
+    /// The description: edit it freely, then call scene().
+    SceneDesc& desc() { return desc_; }
+    const SceneDesc& desc() const { return desc_; }
+
+    /// The Scene for the description as it is now (built or rebuilt here if needed).
+    const Scene& scene();
+
+    /// Builds so far, over every Scene this has built.
+    BuildCounts build_counts() const;
+
+  private:
+    SceneDesc desc_;
+    SceneDesc built_from_;  ///< the description scene_ was built from
+    Scene scene_;
+    BuildCounts retired_;  ///< builds of the scenes replaced so far
+};
+
+// The built-in scenes (`luz scenes`): demo_scenes() and find_demo() (scene/demo_scenes.h);
+// the material presets (`luz materials`): presets() and find_preset() (scene/presets.h).
+
+}  // namespace luz

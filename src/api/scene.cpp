@@ -1,0 +1,86 @@
+// The public Scene: a built scene shared by its copies, its BVH built on the first ray-traced
+// render, and build counters (include/luz/scene.h).
+#include "geometry/scene.h"
+
+#include <mutex>
+#include <nlohmann/json.hpp>
+
+#include "luz/scene.h"
+
+namespace luz {
+
+struct Scene::State {
+    BuiltScene built;
+    mutable std::mutex mutex;  ///< guards the lazy BVH build and the counters
+    mutable BuildCounts counts;
+};
+
+const BuiltScene& Scene::built() const {
+    if (!state_) throw std::logic_error("luz::Scene used before build()");
+    return state_->built;
+}
+
+BuildCounts Scene::build_counts() const {
+    if (!state_) return {};
+    std::lock_guard lock(state_->mutex);
+    return state_->counts;
+}
+
+size_t Scene::material_count() const { return built().material_count; }
+
+void Scene::prepare(Pipeline pipeline) const {
+    const BuiltScene& b = built();
+    if (pipeline == Pipeline::zbuffer || b.geometry.accel != Accel::bvh) return;
+    std::lock_guard lock(state_->mutex);
+    if (b.has_bvh) return;
+    // Every ray-traced render of this scene calls prepare() first and waits here until the
+    // BVH is built; once built it never changes.
+    build_bvh(state_->built);
+    ++state_->counts.bvh;
+}
+
+Scene build(const SceneDesc& desc) {
+    Scene scene;
+    scene.state_ = std::make_shared<Scene::State>();
+    // The BVH waits for the first ray-traced render (prepare()): a zbuffer render needs none.
+    SceneDesc geometry_only;
+    geometry_only.geometry = desc.geometry;
+    geometry_only.geometry.accel = Accel::none;
+    geometry_only.objects = desc.objects;
+    geometry_only.materials = desc.materials;
+    scene.state_->built = build_scene(geometry_only);
+    scene.state_->built.geometry = desc.geometry;
+    scene.state_->counts.geometry = 1;
+    return scene;
+}
+
+bool needs_rebuild(const SceneDesc& a, const SceneDesc& b) {
+    if (a.geometry.tessellation != b.geometry.tessellation) return true;
+    if (a.geometry.accel != b.geometry.accel) return true;
+    return a.objects != b.objects;
+}
+
+const Scene& EditableScene::scene() {
+    if (!scene_ || needs_rebuild(built_from_, desc_)) {
+        const BuildCounts old = scene_.build_counts();
+        retired_.geometry += old.geometry;
+        retired_.bvh += old.bvh;
+        scene_ = build(desc_);
+        built_from_ = desc_;
+    }
+    return scene_;
+}
+
+BuildCounts EditableScene::build_counts() const {
+    const BuildCounts now = scene_.build_counts();
+    return {retired_.geometry + now.geometry, retired_.bvh + now.bvh};
+}
+
+SceneDesc load_scene_value(const nlohmann::ordered_json& value, const std::string& label,
+                           const std::string& base_dir, const std::vector<Override>& overrides) {
+    // A parsed value has no syntax to get wrong: its text goes through the one loader, so that
+    // every check and message is the file's (key paths named after `label`).
+    return parse_scene(value.dump(), label, base_dir, overrides);
+}
+
+}  // namespace luz
