@@ -58,7 +58,8 @@ if ((profile)); then
         perf record -q -e cpu-clock -F 1000 --call-graph dwarf -o "$data" \
             build/native-prof/bench/zbuffer_vs_llvmpipe --profile "$level" --threads 1 \
             --frames "$frames" >/dev/null 2>&1
-        python3 bench/zbuffer_phases.py "$data" src/render/zbuffer.cpp 12
+        python3 bench/zbuffer_phases.py "$data" \
+            src/render/zbuffer.cpp,src/render/rasterizer.cpp,src/render/zbuffer_shade.h 12
         rm -f "$data" "$data.old"
     done
 fi

@@ -1,31 +1,34 @@
 #!/usr/bin/env python3
 # Splits a perf profile of `zbuffer_vs_llvmpipe --profile LEVEL` (perf record --call-graph dwarf,
 # binary built with -g) into the zbuffer's phases: each sample goes to the innermost stack frame
-# that lies in src/render/zbuffer.cpp, classified by the function that line belongs to.
-# Usage: zbuffer_phases.py PERF_DATA SRC/render/zbuffer.cpp [TOP_LEAVES]
+# that lies in one of the given sources, classified by the function that line belongs to.
+# Usage: zbuffer_phases.py PERF_DATA SRC/render/zbuffer.cpp,SRC/render/rasterizer.cpp,... [TOP_LEAVES]
 import collections
 import re
 import subprocess
 import sys
 
-data, source = sys.argv[1], sys.argv[2]
+data, sources = sys.argv[1], sys.argv[2].split(',')
 top_leaves = int(sys.argv[3]) if len(sys.argv) > 3 else 12
 
-# Line ranges of zbuffer.cpp's functions and of render_zbuffer's numbered steps.
-marks = []  # (first line, name)
-for n, line in enumerate(open(source, encoding='utf-8'), 1):
-    m = re.match(r'^[A-Za-z][\w:<>,\s\*&]*?\b(\w+)\((.*)$', line)
-    if m and not line.startswith(('namespace', 'using', 'constexpr', 'struct', 'return')):
-        marks.append((n, m.group(1)))
-    m = re.match(r'^\s*// (\d)\. ', line)
-    if m:
-        marks.append((n, 'render_zbuffer_step' + m.group(1)))
-marks.sort()
+# Per source file (by base name): line ranges of its functions and of the frame's numbered
+# steps (1, 2 in the rasterizer's constructor, 3 in render_zbuffer).
+marks = {}  # base name -> [(first line, name)]
+for source in sources:
+    file_marks = marks.setdefault(source.rsplit('/', 1)[-1], [])
+    for n, line in enumerate(open(source, encoding='utf-8'), 1):
+        m = re.match(r'^(?:\[\[[\w:]+\]\]\s*)?[A-Za-z][\w:<>,\s\*&]*?\b(\w+)\((.*)$', line)
+        if m and not line.startswith(('namespace', 'using', 'constexpr', 'struct', 'return')):
+            file_marks.append((n, m.group(1)))
+        m = re.match(r'^\s*// (\d)\. ', line)
+        if m:
+            file_marks.append((n, 'render_zbuffer_step' + m.group(1)))
+    file_marks.sort()
 
 
-def function_at(line):
+def function_at(file, line):
     name = 'top'
-    for first, f in marks:
+    for first, f in marks[file]:
         if first > line:
             break
         name = f
@@ -43,7 +46,8 @@ PHASES = {
     'setup': 'triangle set-up: setup() (fixed point via lround)',
     'bin': 'binning: tile lists (push_back, growth, page faults)',
     'render_zbuffer_step2': 'binning: tile lists (push_back, growth, page faults)',
-    'rasterize': 'rasterization: edge set-up, pixel loop, depth test',
+    'rasterize_triangle': 'rasterization: edge set-up, pixel loop, depth test',
+    'rasterize': 'rasterization: per-tile fragment clear, walk of the bins',
     'render_zbuffer_step3': 'rasterization: per-tile fragment clear, walk of the bins',
 }
 
@@ -79,11 +83,11 @@ def phase(stack):
     if NOT_A_FRAME.search(names) or 'zbuffer_vs_llvmpipe.cpp' in srcs and 'render_zbuffer' not in names:
         return None  # prepare_zbuffer, start-up: not part of a frame
     for s, src in stack:
-        m = re.match(r'zbuffer\.cpp:(\d+)', src)
-        if not m:
+        m = re.match(r'(?:.*/)?([\w.]+):(\d+)', src)
+        if not m or m.group(1) not in marks:
             continue
-        f = function_at(int(m.group(1)))
-        if f == 'shade_tile':
+        f = function_at(m.group(1), int(m.group(2)))
+        if f in ('shade_tile', 'shade_fragment'):
             if re.search(r'luz::shade<|powf', names):
                 return 'shading: shade() (phong model, powf)'
             return 'shading: fetch, interpolate P and N, normalize, store pixel'

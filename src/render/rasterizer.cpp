@@ -1,0 +1,308 @@
+// The zbuffer's rasterizer: vertices projected, triangles clipped (homogeneous Sutherland–Hodgman)
+// and binned into tiles, then rasterized per tile with fixed-point edge functions and a depth test.
+#include "render/rasterizer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/parallel.h"
+
+namespace luz {
+
+namespace {
+
+constexpr size_t kChunkSize = 16384;  // triangles per binning task (fixed: determinism)
+
+/// A vertex in clip space: x, y in half-image units times w, depth along the view, w.
+struct ClipVertex {
+    float x, y, depth, w;
+    Vec3 bary;  ///< barycentric coordinates in the original triangle
+};
+
+/// What binning needs to know of the frame.
+struct Binning {
+    const TriangleMesh& mesh;
+    const std::vector<ClipVertex>& vertices;  ///< projected mesh positions
+    bool perspective;
+    int width, height, tiles_x, tiles_y;
+    int64_t unit;  ///< fixed-point units per pixel
+    int tile;      ///< pixels per tile side
+    int margin;    ///< pixels a triangle's box grows by when binned
+};
+
+/// ⌊a / b⌋ and ⌈a / b⌉ for b > 0.
+int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }
+
+ClipVertex project(const Camera& cam, bool perspective, const Vec3& p) {
+    const Vec3 v = cam.to_view(p);
+    ClipVertex c;
+    c.x = v.x / cam.half_width;
+    c.y = v.y / cam.half_height;
+    c.depth = v.z;
+    c.w = perspective ? v.z : 1.0f;
+    return c;
+}
+
+/// Signed distance to one clip plane; inside where ≥ 0. Planes: 0 near (camera plane),
+/// 1..4 guard band left, right, bottom, top.
+float plane_distance(const ClipVertex& v, int plane, float near) {
+    switch (plane) {
+        case 0:
+            return v.depth - near;
+        case 1:
+            return v.x + kGuardBand * v.w;
+        case 2:
+            return kGuardBand * v.w - v.x;
+        case 3:
+            return v.y + kGuardBand * v.w;
+        default:
+            return kGuardBand * v.w - v.y;
+    }
+}
+
+ClipVertex lerp(const ClipVertex& a, const ClipVertex& b, float t) {
+    return {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, a.depth + (b.depth - a.depth) * t,
+            a.w + (b.w - a.w) * t, a.bary + (b.bary - a.bary) * t};
+}
+
+/// Sutherland–Hodgman clipping of a convex polygon against the planes in `mask`.
+int clip_polygon(ClipVertex* poly, int n, unsigned mask, float near) {
+    ClipVertex tmp[16];
+    for (int plane = 0; plane < 5 && n > 0; ++plane) {
+        if (!(mask & (1u << plane))) continue;
+        int m = 0;
+        for (int i = 0; i < n; ++i) {
+            const ClipVertex& a = poly[i];
+            const ClipVertex& b = poly[(i + 1) % n];
+            const float da = plane_distance(a, plane, near), db = plane_distance(b, plane, near);
+            if (da >= 0) tmp[m++] = a;
+            if ((da >= 0) != (db >= 0)) tmp[m++] = lerp(a, b, da / (da - db));
+        }
+        std::copy(tmp, tmp + m, poly);
+        n = m;
+    }
+    return n;
+}
+
+/// The near plane: the camera plane for orthographic views; a small positive depth for
+/// perspective, where w must stay positive.
+float near_depth(const Binning& f) { return f.perspective ? 1e-4f : 0.0f; }
+
+/// Screen-space setup of a clipped or unclipped triangle; false if it covers no area.
+bool setup(const Binning& f, const ClipVertex* v, uint32_t triangle, RasterTriangle& r) {
+    const double sx = 0.5 * f.width * static_cast<double>(f.unit);
+    const double sy = 0.5 * f.height * static_cast<double>(f.unit);
+    for (int i = 0; i < 3; ++i) {
+        const float iw = 1.0f / v[i].w;
+        // px = (x+1)·W/2, py = (1−y)·H/2 (SPEC §1.3), in fixed point.
+        r.x[i] = static_cast<int32_t>(std::lround((double{v[i].x} * iw + 1.0) * sx));
+        r.y[i] = static_cast<int32_t>(std::lround((1.0 - double{v[i].y} * iw) * sy));
+        r.depth[i] = v[i].depth;
+        r.inv_w[i] = iw;
+    }
+    r.triangle = triangle;
+    r.clip = -1;
+    const int64_t area = static_cast<int64_t>(r.x[1] - r.x[0]) * (r.y[2] - r.y[0]) -
+                         static_cast<int64_t>(r.y[1] - r.y[0]) * (r.x[2] - r.x[0]);
+    return area != 0;
+}
+
+/// Adds a set-up triangle to the bins of the tiles its bounding box touches.
+void bin(const Binning& f, ChunkBins& bins, const RasterTriangle& r) {
+    const auto pixel = [&](int32_t v, int grow) {
+        return static_cast<int32_t>(floor_div(v, f.unit)) + grow;
+    };
+    const int32_t lo_x = pixel(std::min({r.x[0], r.x[1], r.x[2]}), -f.margin);
+    const int32_t hi_x = pixel(std::max({r.x[0], r.x[1], r.x[2]}), f.margin);
+    const int32_t lo_y = pixel(std::min({r.y[0], r.y[1], r.y[2]}), -f.margin);
+    const int32_t hi_y = pixel(std::max({r.y[0], r.y[1], r.y[2]}), f.margin);
+    if (hi_x < 0 || hi_y < 0 || lo_x >= f.width || lo_y >= f.height) return;
+    const int tx0 = std::max(0, lo_x / f.tile), tx1 = std::min(f.tiles_x - 1, hi_x / f.tile);
+    const int ty0 = std::max(0, lo_y / f.tile), ty1 = std::min(f.tiles_y - 1, hi_y / f.tile);
+    const auto index = static_cast<uint32_t>(bins.triangles.size());
+    bins.triangles.push_back(r);
+    for (int ty = ty0; ty <= ty1; ++ty)
+        for (int tx = tx0; tx <= tx1; ++tx) bins.tile_lists[ty * f.tiles_x + tx].push_back(index);
+}
+
+/// Projects, clips and bins triangles [begin, end).
+void bin_chunk(const Binning& f, size_t begin, size_t end, ChunkBins& bins) {
+    const TriangleMesh& mesh = f.mesh;
+    const float near = near_depth(f);
+    bins.tile_lists.assign(static_cast<size_t>(f.tiles_x) * f.tiles_y, {});
+    for (size_t t = begin; t < end; ++t) {
+        ClipVertex v[3];
+        unsigned outside_all = 0x1f, outside_any = 0;
+        for (int i = 0; i < 3; ++i) {
+            v[i] = f.vertices[mesh.indices[3 * t + i]];
+            unsigned out = 0;
+            for (int p = 0; p < 5; ++p)
+                if (plane_distance(v[i], p, near) < 0) out |= 1u << p;
+            outside_all &= out;
+            outside_any |= out;
+        }
+        if (outside_all) continue;  // entirely outside one plane
+        const auto tri = static_cast<uint32_t>(t);
+        RasterTriangle r;
+        if (!outside_any) {
+            if (setup(f, v, tri, r)) bin(f, bins, r);
+            continue;
+        }
+        ClipVertex poly[16] = {v[0], v[1], v[2]};
+        poly[0].bary = {1, 0, 0};
+        poly[1].bary = {0, 1, 0};
+        poly[2].bary = {0, 0, 1};
+        const int n = clip_polygon(poly, 3, outside_any, near);
+        for (int i = 1; i + 1 < n; ++i) {
+            const ClipVertex fan[3] = {poly[0], poly[i], poly[i + 1]};
+            if (!setup(f, fan, tri, r)) continue;
+            r.clip = static_cast<int32_t>(bins.clip_bary.size());
+            bins.clip_bary.push_back({fan[0].bary, fan[1].bary, fan[2].bary});
+            bin(f, bins, r);
+        }
+    }
+}
+
+/// Rasterizes one triangle into a lattice's fragments (top-left fill rule).
+void rasterize_triangle(bool persp, const RasterTriangle& r, const std::array<Vec3, 3>* clip_bary,
+                        const Lattice& lat, Fragment* frags) {
+    int64_t x[3] = {r.x[0], r.x[1], r.x[2]}, y[3] = {r.y[0], r.y[1], r.y[2]};
+    int order[3] = {0, 1, 2};
+    // Edge functions are positive inside for a counter-clockwise triangle on screen (y down).
+    int64_t area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+    if (area < 0) {
+        std::swap(x[1], x[2]);
+        std::swap(y[1], y[2]);
+        std::swap(order[1], order[2]);
+        area = -area;
+    }
+    const int64_t step = lat.step;
+    // Lattice range of the bounding box.
+    const int64_t min_x = std::min({x[0], x[1], x[2]}), max_x = std::max({x[0], x[1], x[2]});
+    const int64_t min_y = std::min({y[0], y[1], y[2]}), max_y = std::max({y[0], y[1], y[2]});
+    const int px0 = static_cast<int>(std::max<int64_t>(0, ceil_div(min_x - lat.x0, step)));
+    const int px1 = static_cast<int>(std::min<int64_t>(lat.w - 1, floor_div(max_x - lat.x0, step)));
+    const int py0 = static_cast<int>(std::max<int64_t>(0, ceil_div(min_y - lat.y0, step)));
+    const int py1 = static_cast<int>(std::min<int64_t>(lat.h - 1, floor_div(max_y - lat.y0, step)));
+    if (px0 > px1 || py0 > py1) return;
+
+    // Edge k is opposite vertex k: E_k(p) = (b − a) × (p − a) for a = v[k+1], b = v[k+2].
+    int64_t ex[3], ey[3], e0[3], bias[3];
+    const int64_t sx = lat.x0 + px0 * step, sy = lat.y0 + py0 * step;
+    for (int k = 0; k < 3; ++k) {
+        const int a = (k + 1) % 3, b = (k + 2) % 3;
+        const int64_t dx = x[b] - x[a], dy = y[b] - y[a];
+        // Inside: E_k = dx·(py − ya) − dy·(px − xa) ≥ 0 (y down, positive area).
+        ex[k] = -dy * step;  // change per lattice step in x
+        ey[k] = dx * step;   // change per lattice step in y
+        e0[k] = dx * (sy - y[a]) - dy * (sx - x[a]);
+        // Top-left rule: a lattice point exactly on an edge belongs to the triangle only if the
+        // edge is a top edge (horizontal, interior below) or a left edge.
+        const bool top = dy == 0 && dx > 0;
+        const bool left = dy < 0;
+        bias[k] = (top || left) ? 0 : 1;
+        e0[k] -= bias[k];
+    }
+    const float inv_area = 1.0f / static_cast<float>(area);
+    const float d[3] = {r.depth[order[0]], r.depth[order[1]], r.depth[order[2]]};
+    const float iw[3] = {r.inv_w[order[0]], r.inv_w[order[1]], r.inv_w[order[2]]};
+    for (int py = py0; py <= py1; ++py) {
+        int64_t w0 = e0[0], w1 = e0[1], w2 = e0[2];
+        Fragment* row = frags + static_cast<size_t>(py) * lat.w;
+        for (int px = px0; px <= px1; ++px) {
+            if ((w0 | w1 | w2) >= 0) {
+                // Screen-space barycentrics λ (without the top-left bias).
+                const float l1 = static_cast<float>(w1 + bias[1]) * inv_area;
+                const float l2 = static_cast<float>(w2 + bias[2]) * inv_area;
+                const float l0 = 1.0f - l1 - l2;
+                float depth, b[3];
+                if (persp) {
+                    // 1/w is linear on screen: perspective-correct interpolation.
+                    const float q0 = l0 * iw[0], q1 = l1 * iw[1], q2 = l2 * iw[2];
+                    const float inv = 1.0f / (q0 + q1 + q2);
+                    b[0] = q0 * inv;
+                    b[1] = q1 * inv;
+                    b[2] = q2 * inv;
+                    depth = b[0] * d[0] + b[1] * d[1] + b[2] * d[2];
+                } else {
+                    b[0] = l0;
+                    b[1] = l1;
+                    b[2] = l2;
+                    depth = l0 * d[0] + l1 * d[1] + l2 * d[2];
+                }
+                Fragment& frag = row[px];
+                if (depth < frag.depth) {
+                    // Barycentrics of the set-up vertices → of the original triangle.
+                    float o[3] = {0, 0, 0};
+                    for (int k = 0; k < 3; ++k) o[order[k]] = b[k];
+                    if (clip_bary) {
+                        const auto& cb = *clip_bary;
+                        const Vec3 ob = cb[0] * o[0] + cb[1] * o[1] + cb[2] * o[2];
+                        o[1] = ob.y;
+                        o[2] = ob.z;
+                    }
+                    frag = {depth, r.triangle, o[1], o[2]};
+                }
+            }
+            w0 += ex[0];
+            w1 += ex[1];
+            w2 += ex[2];
+        }
+        e0[0] += ey[0];
+        e0[1] += ey[1];
+        e0[2] += ey[2];
+    }
+}
+
+constexpr Fragment kEmptyFragment{std::numeric_limits<float>::infinity(), kNoTriangle, 0, 0};
+
+}  // namespace
+
+Rasterizer::Rasterizer(const TriangleMesh& mesh, const Camera& camera, int width, int height,
+                       const RasterLayout& layout, int threads)
+    : perspective_(camera.projection == Projection::perspective),
+      width_(width),
+      height_(height),
+      tiles_x_((width + layout.tile - 1) / layout.tile),
+      tiles_y_((height + layout.tile - 1) / layout.tile),
+      layout_(layout) {
+    // 1. Project every vertex.
+    const auto& positions = mesh.positions;
+    std::vector<ClipVertex> vertices(positions.size());
+    const size_t vertex_chunks = (positions.size() + kChunkSize - 1) / kChunkSize;
+    parallel_items(threads, vertex_chunks, [&](size_t c) {
+        const size_t end = std::min(positions.size(), (c + 1) * kChunkSize);
+        for (size_t i = c * kChunkSize; i < end; ++i)
+            vertices[i] = project(camera, perspective_, positions[i]);
+    });
+
+    // 2. Clip and bin triangles, chunk by chunk (chunk boundaries fixed: same bins always).
+    const Binning f{mesh,     vertices, perspective_, width,       height,
+                    tiles_x_, tiles_y_, layout.unit,  layout.tile, layout.margin};
+    const size_t triangles = mesh.triangle_count();
+    chunks_.resize((triangles + kChunkSize - 1) / kChunkSize);
+    parallel_items(threads, chunks_.size(), [&](size_t c) {
+        bin_chunk(f, c * kChunkSize, std::min(triangles, (c + 1) * kChunkSize), chunks_[c]);
+    });
+}
+
+uint64_t Rasterizer::triangles() const {
+    uint64_t n = 0;
+    for (const ChunkBins& c : chunks_) n += c.triangles.size();
+    return n;
+}
+
+void Rasterizer::rasterize(size_t t, const Lattice& lat, Fragment* frags) const {
+    std::fill(frags, frags + static_cast<size_t>(lat.w) * lat.h, kEmptyFragment);
+    // Chunks in order, so that ties resolve the same way always.
+    for (const ChunkBins& c : chunks_) {
+        for (uint32_t index : c.tile_lists[t]) {
+            const RasterTriangle& r = c.triangles[index];
+            rasterize_triangle(perspective_, r, r.clip >= 0 ? &c.clip_bary[r.clip] : nullptr, lat,
+                               frags);
+        }
+    }
+}
+
+}  // namespace luz
