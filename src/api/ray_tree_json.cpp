@@ -24,33 +24,12 @@ const char* kind_name(RayKind k) {
     return "?";
 }
 
-const char* shape_name(ShapeType t) {
-    switch (t) {
-        case ShapeType::sphere:
-            return "sphere";
-        case ShapeType::box:
-            return "box";
-        case ShapeType::cylinder:
-            return "cylinder";
-        case ShapeType::cone:
-            return "cone";
-        case ShapeType::torus:
-            return "torus";
-        case ShapeType::plane:
-            return "plane";
-        case ShapeType::triangle:
-            return "triangle";
-        case ShapeType::mesh:
-            return "mesh";
-    }
-    return "?";
-}
-
 }  // namespace
 
 std::string object_label(const SceneDesc& desc, int object) {
     if (object < 0 || object >= static_cast<int>(desc.objects.size())) return "none";
-    return "objects." + std::to_string(object) + " (" + shape_name(desc.objects[object].type) + ")";
+    return "objects." + std::to_string(object) + " (" +
+           std::string(shape_name(desc.objects[object].type)) + ")";
 }
 
 std::string material_label(const SceneDesc& desc, int material) {

@@ -28,28 +28,6 @@ Json num(float v) {
 
 Json vec(const Vec3& v) { return Json::array({num(v.x), num(v.y), num(v.z)}); }
 
-const char* shape_type(ShapeType t) {
-    switch (t) {
-        case ShapeType::sphere:
-            return "sphere";
-        case ShapeType::box:
-            return "box";
-        case ShapeType::cylinder:
-            return "cylinder";
-        case ShapeType::cone:
-            return "cone";
-        case ShapeType::torus:
-            return "torus";
-        case ShapeType::plane:
-            return "plane";
-        case ShapeType::triangle:
-            return "triangle";
-        case ShapeType::mesh:
-            return "mesh";
-    }
-    return "sphere";
-}
-
 Json material_json(const Material& m) {
     Json j;
     j["ka"] = vec(m.ka);
@@ -74,6 +52,26 @@ std::string mesh_path(const std::string& file, const std::string& out_dir) {
     const fs::path rel = fs::relative(abs, fs::absolute(out_dir.empty() ? "." : out_dir), ec);
     if (ec || rel.empty()) return abs.string();
     return rel.generic_string();
+}
+
+/// The value of shape key `k` of `o`, as the loader reads it (kShapeKeys in shape_desc.h).
+Json shape_key_json(const ObjectDesc& o, const ShapeKey& k, const std::string& out_dir) {
+    switch (k.kind) {
+        case ShapeKeyKind::point:
+        case ShapeKeyKind::direction:
+            return vec(o.*std::get<Vec3 ObjectDesc::*>(k.member));
+        case ShapeKeyKind::number:
+            return num(o.*std::get<float ObjectDesc::*>(k.member));
+        case ShapeKeyKind::flag:
+            return o.*std::get<bool ObjectDesc::*>(k.member);
+        case ShapeKeyKind::vertices: {
+            const auto& p = o.*std::get<std::array<Vec3, 3> ObjectDesc::*>(k.member);
+            return Json::array({vec(p[0]), vec(p[1]), vec(p[2])});
+        }
+        case ShapeKeyKind::obj_file:
+            return mesh_path(o.*std::get<std::string ObjectDesc::*>(k.member), out_dir);
+    }
+    return nullptr;
 }
 
 }  // namespace
@@ -143,44 +141,11 @@ std::string scene_to_json(const SceneDesc& d, const std::string& out_dir) {
     Json objects = Json::array();
     for (const ObjectDesc& o : d.objects) {
         Json b;
-        b["type"] = shape_type(o.type);
-        switch (o.type) {
-            case ShapeType::sphere:
-                b["center"] = vec(o.center);
-                b["radius"] = num(o.radius);
-                break;
-            case ShapeType::box:
-                b["min"] = vec(o.min);
-                b["max"] = vec(o.max);
-                break;
-            case ShapeType::cylinder:
-            case ShapeType::cone:
-                b["base"] = vec(o.base);
-                b["axis"] = vec(o.axis);
-                b["radius"] = num(o.radius);
-                b["height"] = num(o.height);
-                b[o.type == ShapeType::cylinder ? "caps" : "cap"] = o.caps;
-                break;
-            case ShapeType::torus:
-                b["center"] = vec(o.center);
-                b["axis"] = vec(o.axis);
-                b["major_radius"] = num(o.major_radius);
-                b["minor_radius"] = num(o.minor_radius);
-                break;
-            case ShapeType::plane:
-                b["point"] = vec(o.point);
-                b["normal"] = vec(o.normal);
-                break;
-            case ShapeType::triangle:
-                b["vertices"] =
-                    Json::array({vec(o.vertices[0]), vec(o.vertices[1]), vec(o.vertices[2])});
-                break;
-            case ShapeType::mesh:
-                b["file"] = mesh_path(o.file, out_dir);
-                b["smooth"] = o.smooth;
-                break;
+        b["type"] = shape_name(o.type);
+        for (const ShapeKey& k : kShapeKeys) {
+            if (k.type == o.type) b[std::string(k.name)] = shape_key_json(o, k, out_dir);
         }
-        if (o.type != ShapeType::mesh || o.mesh_materials.empty()) {
+        if (o.mesh_materials.empty()) {  // else the MTL file gives the materials
             b["material"] = key_of.count(o.material) ? key_of[o.material] : "default";
         }
         b["transform"] = {
@@ -196,7 +161,7 @@ void write_scene(const std::string& path, const SceneDesc& desc) {
     // A built-in scene's meshes live in the binary: put a copy next to the saved scene.
     for (const ObjectDesc& o : desc.objects) {
         std::error_code ec;
-        if (o.type != ShapeType::mesh || fs::exists(o.file, ec)) continue;
+        if (o.file.empty() || fs::exists(o.file, ec)) continue;  // not a mesh, or on disk
         const auto text = embedded_file(o.file);
         const fs::path target = fs::path(out_dir.empty() ? "." : out_dir) / o.file;
         if (!text || fs::exists(target, ec)) continue;

@@ -4,11 +4,48 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
+
+#include "app/viewer/panel_sliders.h"
 
 namespace luz {
 
 namespace {
+
+/// An integer slider over the range the limits table gives (panel_sliders.h).
+bool slider_int(PanelSlider id, int& value) {
+    const SliderRange r = panel_slider_range(id);
+    return ImGui::SliderInt(panel_slider(id).label, &value, static_cast<int>(r.lo),
+                            static_cast<int>(r.hi));
+}
+
+/// A float slider over the range the limits table gives.
+bool slider_float(PanelSlider id, float& value, const char* format = "%.3f",
+                  ImGuiSliderFlags flags = 0) {
+    const SliderRange r = panel_slider_range(id);
+    return ImGui::SliderFloat(panel_slider(id).label, &value, static_cast<float>(r.lo),
+                              static_cast<float>(r.hi), format, flags);
+}
+
+/// `value` kept at or above the slider's low end and, for a key bounded above, at or below its
+/// high end (a typed-in value may leave the slider's range; the loader's limit still holds).
+float clamp_to_limit(PanelSlider id, float value) {
+    const SliderRange r = panel_slider_range(id);
+    const bool bounded = key_limit(panel_slider(id).key).limit.hi < kUnbounded;
+    value = std::max(static_cast<float>(r.lo), value);
+    return bounded ? std::min(static_cast<float>(r.hi), value) : value;
+}
+
+/// A float dragged within the range the limits table gives.
+bool drag_float(PanelSlider id, float& value, float speed) {
+    const SliderRange r = panel_slider_range(id);
+    const float lo = static_cast<float>(r.lo), hi = static_cast<float>(r.hi);
+    if (!ImGui::DragFloat(panel_slider(id).label, &value, speed, lo, hi, "%.3f")) return false;
+    value = clamp_to_limit(id, value);
+    return true;
+}
 
 /// An RGB constant in [0, 1] (Ka, Kd, Ks).
 bool edit_unit_rgb(const char* label, Rgb& c) {
@@ -16,9 +53,11 @@ bool edit_unit_rgb(const char* label, Rgb& c) {
 }
 
 /// An RGB value ≥ 0 that may exceed 1 (Ia, Il).
-bool edit_intensity(const char* label, Rgb& c) {
-    bool changed = ImGui::DragFloat3(label, &c.x, 0.01f, 0.0f, 1000.0f, "%.3f");
-    c = Rgb{std::max(0.0f, c.x), std::max(0.0f, c.y), std::max(0.0f, c.z)};
+bool edit_intensity(PanelSlider id, Rgb& c) {
+    const SliderRange r = panel_slider_range(id);
+    const float lo = static_cast<float>(r.lo), hi = static_cast<float>(r.hi);
+    bool changed = ImGui::DragFloat3(panel_slider(id).label, &c.x, 0.01f, lo, hi, "%.3f");
+    c = Rgb{clamp_to_limit(id, c.x), clamp_to_limit(id, c.y), clamp_to_limit(id, c.z)};
     return changed;
 }
 
@@ -38,45 +77,43 @@ bool render_section(SceneDesc& d) {
     RenderDesc& r = d.render;
     changed |= edit_enum("pipeline", r.pipeline, {"zbuffer", "raycast", "raytrace"});
     changed |= edit_enum("model", r.model, {"lambert", "phong"});
-    changed |= ImGui::SliderInt("max depth", &r.max_depth, 0, 16);
+    changed |= slider_int(PanelSlider::max_depth, r.max_depth);
     changed |= ImGui::Checkbox("tree attenuation", &r.tree_attenuation);
-    changed |= ImGui::SliderInt("tessellation", &d.geometry.tessellation, 3, 512);
+    changed |= slider_int(PanelSlider::tessellation, d.geometry.tessellation);
     changed |= edit_enum("accel", d.geometry.accel, {"bvh", "none"});
     AntialiasDesc& aa = r.antialias;
     changed |= edit_enum("antialias", aa.mode, {"none", "grid", "adaptive"});
     if (aa.mode == AaMode::grid) {
+        // The slider edits s; the table's range is that of s² (perfect squares).
+        const SliderRange range = panel_slider_range(PanelSlider::samples);
         int s = 1;
         while (s * s < aa.samples) ++s;
-        if (ImGui::SliderInt("samples (s², s =)", &s, 1, 16)) {
+        const int s_lo = static_cast<int>(std::lround(std::sqrt(range.lo)));
+        const int s_hi = static_cast<int>(std::lround(std::sqrt(range.hi)));
+        if (ImGui::SliderInt(panel_slider(PanelSlider::samples).label, &s, s_lo, s_hi)) {
             aa.samples = s * s;
             changed = true;
         }
         changed |= edit_enum("filter", aa.filter, {"box", "tent"});
         changed |= ImGui::Checkbox("jitter", &aa.jitter);
     } else if (aa.mode == AaMode::adaptive) {
-        changed |= ImGui::SliderFloat("threshold", &aa.threshold, 0.0f, 1.0f, "%.3f");
-        changed |= ImGui::SliderInt("max level", &aa.max_level, 0, 6);
+        changed |= slider_float(PanelSlider::threshold, aa.threshold);
+        changed |= slider_int(PanelSlider::max_level, aa.max_level);
     }
     return changed;
 }
 
 bool lighting_section(SceneDesc& d) {
     bool changed = false;
-    changed |= edit_intensity("Ia (ambient)", d.ambient);
-    if (ImGui::DragFloat("K (attenuation)", &d.attenuation_k, 0.01f, 1e-3f, 1000.0f, "%.3f")) {
-        d.attenuation_k = std::max(1e-3f, d.attenuation_k);
-        changed = true;
-    }
+    changed |= edit_intensity(PanelSlider::ambient, d.ambient);
+    changed |= drag_float(PanelSlider::attenuation_k, d.attenuation_k, 0.01f);
     for (size_t j = 0; j < d.lights.size(); ++j) {
         ImGui::PushID(static_cast<int>(j));
         if (ImGui::TreeNode("light", "lights.%zu", j)) {
             Light& l = d.lights[j];
-            changed |= edit_intensity("Il", l.intensity);
+            changed |= edit_intensity(PanelSlider::light_intensity, l.intensity);
             changed |= ImGui::DragFloat3("position", &l.position.x, 0.05f);
-            if (ImGui::DragFloat("radius", &l.radius, 0.01f, 0.0f, 100.0f)) {
-                l.radius = std::max(0.0f, l.radius);
-                changed = true;
-            }
+            changed |= drag_float(PanelSlider::light_radius, l.radius, 0.01f);
             ImGui::TreePop();
         }
         ImGui::PopID();
@@ -93,14 +130,13 @@ bool materials_section(SceneDesc& d) {
             changed |= edit_unit_rgb("Ka", m.ka);
             changed |= edit_unit_rgb("Kd", m.kd);
             changed |= edit_unit_rgb("Ks", m.ks);
-            if (ImGui::SliderFloat("n", &m.n, 0.1f, 2000.0f, "%.2f",
-                                   ImGuiSliderFlags_Logarithmic)) {
-                m.n = std::max(1e-3f, m.n);
+            if (slider_float(PanelSlider::n, m.n, "%.2f", ImGuiSliderFlags_Logarithmic)) {
+                m.n = clamp_to_limit(PanelSlider::n, m.n);
                 changed = true;
             }
-            changed |= ImGui::SliderFloat("reflection", &m.reflection, 0.0f, 1.0f);
-            changed |= ImGui::SliderFloat("transparency", &m.transparency, 0.0f, 1.0f);
-            changed |= ImGui::SliderFloat("ior", &m.ior, 1.0f, 3.0f);
+            changed |= slider_float(PanelSlider::reflection, m.reflection);
+            changed |= slider_float(PanelSlider::transparency, m.transparency);
+            changed |= slider_float(PanelSlider::ior, m.ior);
             if (m.checker) {
                 changed |= edit_unit_rgb("checker Ka", m.checker->ka);
                 changed |= edit_unit_rgb("checker Kd", m.checker->kd);
@@ -119,9 +155,9 @@ bool camera_section(SceneDesc& d, PanelState& state) {
     changed |= ImGui::DragFloat3("position", &c.position.x, 0.05f);
     changed |= ImGui::DragFloat3("look at", &c.look_at.x, 0.05f);
     if (c.projection == Projection::orthographic) {
-        changed |= ImGui::DragFloat("view height", &c.view_height, 0.05f, 1e-3f, 1e4f);
+        changed |= drag_float(PanelSlider::view_height, c.view_height, 0.05f);
     } else {
-        changed |= ImGui::SliderFloat("fov y", &c.fov_y, 1.0f, 170.0f);
+        changed |= slider_float(PanelSlider::fov_y, c.fov_y);
     }
     if (ImGui::Button("reset camera (R)")) state.reset_camera = true;
     return changed;

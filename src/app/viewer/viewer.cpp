@@ -19,6 +19,7 @@
 #include "app/viewer/camera_controls.h"
 #include "app/viewer/gl_texture.h"
 #include "app/viewer/panel.h"
+#include "app/viewer/panel_sliders.h"
 #include "app/viewer/ray_tree_view.h"
 #include "app/viewer/render_worker.h"
 #include "app/viewer/screenshot.h"
@@ -218,10 +219,12 @@ void Viewer::handle_key(SDL_Keycode key) {
             r.tree_attenuation = !r.tree_attenuation;
             break;
         case SDLK_LEFTBRACKET:
-            r.max_depth = std::max(0, r.max_depth - 1);
+            r.max_depth = std::max(static_cast<int>(panel_slider_range(PanelSlider::max_depth).lo),
+                                   r.max_depth - 1);
             break;
         case SDLK_RIGHTBRACKET:
-            r.max_depth = std::min(64, r.max_depth + 1);
+            r.max_depth = std::min(static_cast<int>(panel_slider_range(PanelSlider::max_depth).hi),
+                                   r.max_depth + 1);
             break;
         case SDLK_c:
             selected_ = false;

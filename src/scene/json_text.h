@@ -1,0 +1,29 @@
+// JSON text → document, with errors at FILE:LINE:COLUMN (the scene loader's first step).
+#pragma once
+
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+
+namespace luz::loader {
+
+// ordered_json keeps the file's key order: materials keep their order and the first unknown
+// key reported is the first one in the file.
+using Json = nlohmann::ordered_json;
+
+/// Deepest nesting of arrays and objects accepted (a scene needs 5). Deeper text is refused
+/// before parsing: nlohmann's dump() recurses, and "got …" messages dump values.
+inline constexpr int kMaxJsonNesting = 64;
+
+/// Byte offset of the first '[' or '{' nested deeper than kMaxJsonNesting outside strings, or
+/// npos.
+std::size_t too_deep_at(std::string_view text);
+
+/// nlohmann's message without its "[json.exception…] parse error at line…:" prefix.
+std::string strip_exception_prefix(std::string s);
+
+/// Parses JSON text; on failure throws InputError "FILE:LINE:COL: JSON syntax error: …".
+Json parse_text(std::string_view text, const std::string& file);
+
+}  // namespace luz::loader

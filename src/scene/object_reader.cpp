@@ -1,0 +1,159 @@
+// Reading `objects` (SPEC §2) through the shape key table (kShapeKeys in shape_desc.h).
+#include "scene/object_reader.h"
+
+#include <filesystem>
+#include <optional>
+
+#include "scene/embedded_files.h"
+#include "scene/json_readers.h"
+#include "scene/number_text.h"
+#include "scene/obj_loader.h"
+
+namespace luz::loader {
+namespace {
+
+/// `transform`: p_world = T·Rz·Ry·Rx·S·p (SPEC §2).
+Affine read_transform(const Json& j, const std::string& path, Vec3& scale, Vec3& rotate,
+                      Vec3& translate) {
+    const Section s(j, path, {"scale", "rotate", "translate"}, "objects.*.transform");
+    if (const Json* v = s.get("scale")) {
+        const std::string key = s.key("scale");
+        if (v->is_number()) {
+            scale = Vec3(read_float(*v, key));
+        } else if (v->is_array() && v->size() == 3) {
+            scale = read_vec3(*v, key);
+        } else {
+            fail(key, "expected a number or an array of 3 numbers, got " + describe(*v));
+        }
+        if (scale.x == 0 || scale.y == 0 || scale.z == 0) {
+            fail(key, "components must be non-zero, got " + format_vec(scale));
+        }
+    }
+    s.vec3("rotate", rotate);
+    s.vec3("translate", translate);
+    return translation(translate) * rotation(2, rotate.z) * rotation(1, rotate.y) *
+           rotation(0, rotate.x) * scaling(scale);
+}
+
+/// The keys shape type `t` accepts, in the order messages list them.
+std::vector<std::string_view> keys_of(ShapeType t) {
+    std::vector<std::string_view> keys = {"type"};
+    for (const ShapeKey& k : kShapeKeys) {
+        if (k.type == t) keys.push_back(k.name);
+    }
+    keys.push_back("material");
+    keys.push_back("transform");
+    return keys;
+}
+
+/// The `type` key: one of the shape names of LUZ_SHAPES.
+ShapeType read_type(const Json& j, const std::string& path) {
+    std::string names;
+    for (std::string_view n : kShapeNames) names += (names.empty() ? "" : ", ") + std::string(n);
+    const auto it = j.find("type");
+    if (it == j.end()) fail(path, "missing key \"type\" (one of: " + names + ")");
+    const std::string key = join(path, "type");
+    if (!it->is_string()) fail(key, "expected one of " + names + ", got " + describe(*it));
+    const std::string s = it->get<std::string>();
+    for (std::size_t i = 0; i < std::size(kShapeNames); ++i) {
+        if (kShapeNames[i] == s) return static_cast<ShapeType>(i);
+    }
+    fail(key, "unknown value \"" + s + "\" (allowed: " + names + ")");
+}
+
+/// Reads one key of the shape's table into `o` (absent: the default stays).
+void read_shape_key(const Section& s, const ShapeKey& k, ObjectDesc& o,
+                    const std::string& base_dir) {
+    const Json* v = s.get(k.name);
+    const std::string key = s.key(k.name);
+    switch (k.kind) {
+        case ShapeKeyKind::point:
+            if (v) o.*std::get<Vec3 ObjectDesc::*>(k.member) = read_vec3(*v, key);
+            break;
+        case ShapeKeyKind::direction:
+            if (v) o.*std::get<Vec3 ObjectDesc::*>(k.member) = read_direction(*v, key);
+            break;
+        case ShapeKeyKind::number:
+            if (v) o.*std::get<float ObjectDesc::*>(k.member) = read_float(*v, key, k.limit);
+            break;
+        case ShapeKeyKind::flag:
+            if (v) o.*std::get<bool ObjectDesc::*>(k.member) = read_bool(*v, key);
+            break;
+        case ShapeKeyKind::vertices:
+            if (v) {
+                if (!v->is_array() || v->size() != 3) {
+                    fail(key, "expected an array of 3 points [x, y, z], got " + describe(*v));
+                }
+                auto& points = o.*std::get<std::array<Vec3, 3> ObjectDesc::*>(k.member);
+                for (std::size_t i = 0; i < 3; ++i) points[i] = read_vec3((*v)[i], join(key, i));
+            }
+            break;
+        case ShapeKeyKind::obj_file: {
+            if (!v)
+                fail(s.path(),
+                     "missing key \"" + std::string(k.name) + "\" (the OBJ file of the mesh)");
+            std::string& file = o.*std::get<std::string ObjectDesc::*>(k.member);
+            file = read_string(*v, key);
+            if (file.empty()) fail(key, "must not be empty");
+            if (!base_dir.empty() && !std::filesystem::path(file).is_absolute()) {
+                file = (std::filesystem::path(base_dir) / file).string();
+            }
+            break;
+        }
+    }
+}
+
+}  // namespace
+
+void MeshFiles::load(ObjectDesc& o, bool names_material, MaterialTable& materials) {
+    const bool with_materials = !names_material;
+    Loaded& l = loaded_[{o.file, with_materials}];
+    if (!l.mesh) {
+        const bool demo = scene_.source.rfind("demo:", 0) == 0;
+        const TextReader read = [demo](const std::string& path, std::string& reason) {
+            if (demo) {
+                if (const auto text = embedded_file(path)) return std::optional(std::string(*text));
+            }
+            return read_text_file(path, reason);
+        };
+        std::string reason;
+        const std::optional<std::string> text = read(o.file, reason);
+        if (!text) {
+            throw InputError(scene_.source + ": " + o.path + ".file: cannot read " + o.file + ": " +
+                             reason);
+        }
+        l.mesh = std::make_shared<const MeshData>(
+            parse_obj(*text, o.file, with_materials, read, scene_.warnings));
+        if (with_materials) {
+            for (const Material& m : l.mesh->materials) l.scene_index.push_back(materials.add(m));
+        }
+    }
+    o.mesh = l.mesh;
+    o.mesh_materials = l.scene_index;
+}
+
+ObjectDesc read_object(const Json& j, const std::string& path, MaterialTable& materials,
+                       const std::string& base_dir, MeshFiles& meshes) {
+    if (!j.is_object()) fail(path, "expected an object, got " + describe(j));
+    ObjectDesc o;
+    o.path = path;
+    o.type = read_type(j, path);
+    const Section s(j, path, keys_of(o.type), "objects." + std::string(shape_name(o.type)),
+                    join(path, "type"));
+    bool has_obj_file = false;
+    for (const ShapeKey& k : kShapeKeys) {
+        if (k.type != o.type) continue;
+        read_shape_key(s, k, o, base_dir);
+        has_obj_file = has_obj_file || k.kind == ShapeKeyKind::obj_file;
+    }
+    if (const std::optional<ShapeProblem> p = check_shape(o)) {
+        fail(s.key(p->key), p->what, p->whole_object ? path : std::string());
+    }
+    if (const Json* m = s.get("material")) o.material = materials.resolve(*m, s.key("material"));
+    if (const Json* t = s.get("transform"))
+        o.transform = read_transform(*t, s.key("transform"), o.scale, o.rotate, o.translate);
+    if (has_obj_file) meshes.load(o, s.get("material") != nullptr, materials);
+    return o;
+}
+
+}  // namespace luz::loader
