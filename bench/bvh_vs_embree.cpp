@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "geometry/bvh.h"
-#include "geometry/intersect.h"
+#include "geometry/shapes.h"
 #include "geometry/mesh.h"
 #include "geometry/scene.h"
 #include "geometry/scene_query.h"

@@ -1,8 +1,13 @@
 // Ray queries on a whole scene: the nearest hit (camera, reflected and refracted rays) and the
-// transmittance of a segment (shadow rays). With render.accel = bvh they traverse the scene's
-// BVH (planes apart), except in a scene of at most 8 shapes and no mesh (Scene::direct), whose
-// shapes are tested in order, spheres four at a time; with none every shape, and every mesh
-// triangle, is tested.
+// transmittance of a segment (shadow rays). One interface, three strategies, each in its own
+// file and all giving the same bits (one tie rule, crossings multiplied in material order):
+// - query_bvh.cpp: render.accel = bvh — the scene's 8-wide BVH, planes tested apart;
+// - query_direct.cpp: render.accel = bvh and a scene of at most 8 shapes and no mesh
+//   (Scene::direct) — the shapes in order, world-form spheres four at a time;
+// - query_all.cpp: render.accel = none — every shape (behind its bounds) and every triangle.
+// The queries see the scene's objects only: light spheres (the lights' `radius`) are not in
+// it, so they never block shadow rays; the ray tracer tests them for camera and secondary rays
+// itself (render/ray_tracer.cpp).
 //
 // Shooting rays at one mesh directly (e.g. a benchmark):
 //     std::vector<std::string> warnings;
@@ -22,8 +27,9 @@
 
 #include <cstdint>
 
-#include "geometry/intersect.h"
+#include "geometry/hit.h"
 #include "geometry/scene.h"
+#include "geometry/shapes.h"
 
 namespace luz {
 
@@ -41,7 +47,7 @@ bool hit_bounds(const Bounds3& b, const Ray& r, const Vec3& inv_dir, float t_min
 
 /// The nearest hit of r among the scene's shapes in (t_min, t_max); hit.shape is its index
 /// (hit.part the triangle for a mesh). Ties in t go to the lowest shape, then triangle, so
-/// that the BVH and testing everything give the very same hit.
+/// that every strategy gives the very same hit.
 bool nearest_hit(const Scene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
                  IntersectCounters& counters);
 
@@ -49,6 +55,7 @@ bool nearest_hit(const Scene& scene, const Ray& r, float t_min, float t_max, Hit
 /// 0 as soon as an opaque one is met (SPEC §1: vis_j; a closed glass shape counts twice). The
 /// crossings are counted per material and multiplied in material order, so the result does
 /// not depend on the order they are found in (up to 32 transparent materials per segment).
+/// Only the scene's shapes count: light spheres never block.
 float transmittance(const Scene& scene, const Ray& r, float t_min, float t_max,
                     IntersectCounters& counters);
 

@@ -1,7 +1,7 @@
 // Tests of intersect() and surface_at(): known hits of every shape, rays from inside, misses,
 // grazing rays, the (t_min, t_max) interval, transformed shapes, outward unit normals, the torus
 // against a brute-force march, open ends of cylinders and cones, watertight shared edges.
-#include "geometry/intersect.h"
+#include "geometry/shapes.h"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <memory>
 
-#include "geometry/intersect.h"
+#include "geometry/shapes.h"
 #include "geometry/shape.h"
 #include "math/transform.h"
 #include "scene/input_error.h"
