@@ -26,9 +26,9 @@
 namespace luz {
 
 /// Calls f(shapes::<name>{}) for the shape type t and returns its result: the only switch on
-/// the shape type.
+/// the shape type. Always inlined (else GCC may leave it out of line in the queries' loops).
 template <class F>
-inline decltype(auto) visit_shape(ShapeType t, F&& f) {
+[[gnu::always_inline]] inline decltype(auto) visit_shape(ShapeType t, F&& f) {
     switch (t) {
 #define LUZ_SHAPE_CASE(name) \
     case ShapeType::name:    \
@@ -44,18 +44,21 @@ inline decltype(auto) visit_shape(ShapeType t, F&& f) {
 /// object space (transform.to_object, direction not normalised), so t is the same in both
 /// spaces. Valid for rays starting inside the shape (refraction). A mesh tests every
 /// triangle (intersect_mesh); the scene queries use the BVH instead.
-inline bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit) {
-    return visit_shape(
-        s.type, [&](auto shape) { return decltype(shape)::intersect(s, r, t_min, t_max, hit); });
+[[gnu::always_inline]] inline bool intersect(const Shape& s, const Ray& r, float t_min, float t_max,
+                                             Hit& hit) {
+    return visit_shape(s.type, [&](auto shape) [[gnu::always_inline]] {
+        return decltype(shape)::intersect(s, r, t_min, t_max, hit);
+    });
 }
 
 /// How many times r crosses s in (t_min, t_max) (a closed shape counts twice), or at most 1
 /// with `first_only` (enough to know an opaque shape blocks); `tests` counts the ray–shape
 /// tests made. Planes and spheres in world form count their roots directly; other shapes
 /// repeat intersect() past each crossing (up to 64).
-inline uint32_t count_crossings(const Shape& s, const Ray& r, float t_min, float t_max,
-                                bool first_only, uint64_t& tests) {
-    return visit_shape(s.type, [&](auto shape) {
+[[gnu::always_inline]] inline uint32_t count_crossings(const Shape& s, const Ray& r, float t_min,
+                                                       float t_max, bool first_only,
+                                                       uint64_t& tests) {
+    return visit_shape(s.type, [&](auto shape) [[gnu::always_inline]] {
         return decltype(shape)::count_crossings(s, r, t_min, t_max, first_only, tests);
     });
 }

@@ -28,7 +28,9 @@ struct mesh {
         return pad(s.mesh->bounds);
     }
 
-    static bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit) {
+    /// Out of line (object_space.h: intersect_in_object_space).
+    [[gnu::noinline]] static bool intersect(const Shape& s, const Ray& r, float t_min, float t_max,
+                                            Hit& hit) {
         return s.mesh && intersect_mesh(*s.mesh, prepare_watertight(r), t_min, t_max, hit);
     }
 

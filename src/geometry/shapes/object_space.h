@@ -61,10 +61,12 @@ inline void quadratic_roots(double a, double b, double c, double disc, double& r
 
 /// intersect() for a shape hit in object space: `hit_object(ro, nearest)` offers the roots of
 /// the object-space ray ro (transform.to_object, direction not normalised, so t is the same in
-/// both spaces) and returns whether one was accepted.
+/// both spaces) and returns whether one was accepted. Out of line, as count_by_repeated_hits():
+/// the world-form paths stay inline in the queries' loops, these would only crowd them.
 template <class HitObject>
-inline bool intersect_in_object_space(const Shape& s, const Ray& r, float t_min, float t_max,
-                                      Hit& hit, const HitObject& hit_object) {
+[[gnu::noinline]] bool intersect_in_object_space(const Shape& s, const Ray& r, float t_min,
+                                                 float t_max, Hit& hit,
+                                                 const HitObject& hit_object) {
     Nearest n{t_min, t_max};
     hit.u = hit.v = 0;
     const Ray ro = s.transform.to_object(r);
@@ -88,8 +90,8 @@ inline bool hit_at_roots(float t0, float t1, float t_min, float t_max, Hit& hit)
 /// past each crossing (up to 64), or stops at the first with `first_only`; `tests` counts the
 /// tests made.
 template <class Intersect>
-inline uint32_t count_by_repeated_hits(float t_min, float t_max, bool first_only, uint64_t& tests,
-                                       const Intersect& intersect) {
+[[gnu::noinline]] uint32_t count_by_repeated_hits(float t_min, float t_max, bool first_only,
+                                                  uint64_t& tests, const Intersect& intersect) {
     Hit hit;
     float t = t_min;
     uint32_t n = 0;

@@ -25,7 +25,9 @@ struct triangle {
         return pad(b);
     }
 
-    static bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit) {
+    /// Out of line (object_space.h: intersect_in_object_space).
+    [[gnu::noinline]] static bool intersect(const Shape& s, const Ray& r, float t_min, float t_max,
+                                            Hit& hit) {
         const WatertightRay w = prepare_watertight(s.transform.to_object(r));
         float t, b1, b2;
         if (!intersect_triangle(w, s.vertices[0], s.vertices[1], s.vertices[2], t_min, t_max, t, b1,
