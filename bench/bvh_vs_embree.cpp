@@ -23,10 +23,10 @@
 #include <vector>
 
 #include "geometry/bvh.h"
-#include "geometry/intersect.h"
 #include "geometry/mesh.h"
 #include "geometry/scene.h"
 #include "geometry/scene_query.h"
+#include "geometry/shapes.h"
 #include "geometry/wide_bvh.h"
 #include "machine_load.h"
 #include "scene/obj_loader.h"

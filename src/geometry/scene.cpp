@@ -5,6 +5,8 @@
 #include <chrono>
 #include <utility>
 
+#include "geometry/query_parts.h"
+
 namespace luz {
 
 BuiltScene build_scene(const SceneDesc& desc) {
@@ -61,15 +63,7 @@ void build_bvh(BuiltScene& scene) {
     for (uint32_t id : order) in_order.push_back(prims[id]);
     scene.bvh_prims = std::move(in_order);
     scene.has_bvh = true;
-    scene.direct = scene.mesh_triangles == 0 && scene.shapes.size() <= BuiltScene::kDirectShapes;
-    scene.sphere_groups.clear();
-    scene.sphere_lane.assign(scene.shapes.size(), -1);
-    for (size_t i = 0; i < scene.shapes.size() && scene.direct; ++i) {
-        const Shape& s = scene.shapes[i];
-        if (s.world_form && s.type == ShapeType::sphere) {
-            scene.sphere_lane[i] = add_to_sphere_groups(scene.sphere_groups, s);
-        }
-    }
+    query::prepare_direct(scene);
     scene.bvh_build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -1,8 +1,13 @@
 // Ray queries on a whole scene: the nearest hit (camera, reflected and refracted rays) and the
-// transmittance of a segment (shadow rays). With render.accel = bvh they traverse the scene's
-// BVH (planes apart), except in a scene of at most 8 shapes and no mesh (BuiltScene::direct), whose
-// shapes are tested in order, spheres four at a time; with none every shape, and every mesh
-// triangle, is tested.
+// transmittance of a segment (shadow rays). One interface, three strategies, each in its own
+// file and all giving the same bits (one tie rule, crossings multiplied in material order):
+// - query_bvh.cpp: render.accel = bvh — the scene's 8-wide BVH, planes tested apart;
+// - query_direct.cpp: render.accel = bvh and a scene of at most 8 shapes and no mesh
+//   (BuiltScene::direct) — the shapes in order, world-form spheres four at a time;
+// - query_all.cpp: render.accel = none — every shape (behind its bounds) and every triangle.
+// The queries see the scene's objects only: light spheres (the lights' `radius`) are not in
+// it, so they never block shadow rays; the ray tracer tests them for camera and secondary rays
+// itself (render/ray_tracer.cpp).
 //
 // Shooting rays at one mesh directly (e.g. a benchmark):
 //     std::vector<std::string> warnings;
@@ -23,14 +28,16 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/intersect.h"
+#include "geometry/hit.h"
 #include "geometry/scene.h"
+#include "geometry/shapes.h"
 
 namespace luz {
 
 /// Intersection tests counted by the queries (per thread; summed at the end), and the time
 /// spent in the queries while `timing` is set (the ray tracer sets it for a sample of rays).
-/// The materials a render uses, indexed by Shape::material (Settings::materials).
+/// The materials a render uses, indexed by Shape::material (Settings::materials): their
+/// `transparency` decides what shadow rays pass.
 using Materials = std::vector<Material>;
 
 struct IntersectCounters {
@@ -45,7 +52,7 @@ bool hit_bounds(const Bounds3& b, const Ray& r, const Vec3& inv_dir, float t_min
 
 /// The nearest hit of r among the scene's shapes in (t_min, t_max); hit.shape is its index
 /// (hit.part the triangle for a mesh). Ties in t go to the lowest shape, then triangle, so
-/// that the BVH and testing everything give the very same hit.
+/// that every strategy gives the very same hit.
 bool nearest_hit(const BuiltScene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
                  IntersectCounters& counters);
 
@@ -53,7 +60,7 @@ bool nearest_hit(const BuiltScene& scene, const Ray& r, float t_min, float t_max
 /// 0 as soon as an opaque one is met (SPEC §1: vis_j; a closed glass shape counts twice). The
 /// crossings are counted per material and multiplied in material order, so the result does
 /// not depend on the order they are found in (up to 32 transparent materials per segment).
-/// `materials` are the render's (Settings::materials): their `transparency` decides.
+/// Only the scene's shapes count: light spheres never block.
 float transmittance(const BuiltScene& scene, const Materials& materials, const Ray& r, float t_min,
                     float t_max, IntersectCounters& counters);
 

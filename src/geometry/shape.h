@@ -1,5 +1,6 @@
-// Shape: one object of the scene in its canonical object space, placed by a transform.
-// Every shape answers bounds(), tessellate() (tessellate.h) and, for the ray tracer, intersect().
+// Shape: one object of the scene in its canonical object space, placed by a transform. Each
+// type's geometry is in shapes/<name>.h; shapes.h dispatches to it (intersect, count_crossings,
+// surface_at; bounds and make_shape here, tessellate in tessellate.h).
 #pragma once
 
 #include <memory>
@@ -31,9 +32,10 @@ struct Shape {
     Vec3 lo, hi;                       ///< box corners in object space
     Vec3 vertices[3];                  ///< triangle vertices in object space
     std::shared_ptr<const Mesh> mesh;  ///< mesh: its triangles (shared by copies of the shape)
+    bool bounded = true;               ///< finite (shapes::<name>::bounded; planes are not)
 
-    /// World-space form, for the ray tracer's fast path (intersect.cpp): set for every plane
-    /// (n·p = offset, n the unit outward normal) and for a sphere whose transform is a
+    /// World-space form, for the ray tracer's fast path (shapes/sphere.h, shapes/plane.h): set for
+    /// every plane (n·p = offset, n the unit outward normal) and for a sphere whose transform is a
     /// similarity (|p − centre| = radius); other shapes are hit in object space.
     bool world_form = false;
     Vec3 centre, normal;  ///< sphere: centre; plane: unit normal n
@@ -41,13 +43,14 @@ struct Shape {
     float offset = 0;     ///< plane: n·p for its points p
 };
 
-/// The runtime shape of an object description (validated: non-degenerate).
+/// The runtime shape of an object description (validated: non-degenerate): its type's
+/// shapes::<name>::place (shapes.cpp).
 Shape make_shape(const ObjectDesc& o, int object_index);
 
-/// World-space bounds; an unbounded plane gives infinite bounds.
+/// World-space bounds; an unbounded plane gives infinite bounds (shapes.cpp).
 Bounds3 bounds(const Shape& s);
 
 /// Whether the shape is finite (everything but the plane).
-inline bool is_bounded(const Shape& s) { return s.type != ShapeType::plane; }
+inline bool is_bounded(const Shape& s) { return s.bounded; }
 
 }  // namespace luz

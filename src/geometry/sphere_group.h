@@ -1,21 +1,16 @@
 // Spheres in world form side by side, four to a group, and their roots with one ray for all
-// four at once (SSE2): how the scene queries test a small scene's spheres (scene_query.cpp).
-// Every lane does the float operations of world_sphere_roots() (intersect.h) in the same
-// order, so its roots are the same bits; a lane that needs that function's double path is
-// flagged, for the caller to test that sphere alone.
+// four at once (SSE2): how the scene queries test a small scene's spheres (query_direct.cpp).
+// Every lane runs the steps of world_sphere_roots() (ray_sphere.h) on Float4 lanes, the same
+// template code, so its roots are the same bits; a lane that needs that function's double path
+// is flagged, for the caller to test that sphere alone.
 #pragma once
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <vector>
 
-#include "geometry/intersect.h"
+#include "geometry/ray_sphere.h"
+#include "geometry/shape.h"
 #include "math/ray.h"
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace luz {
 
@@ -64,50 +59,33 @@ inline SphereGroupRoots sphere_group_roots_one_by_one(const SphereGroup& g, cons
     return out;
 }
 
-/// The roots of r with the group's spheres, four at once with SSE2 (else one by one).
+/// The roots of r with the group's spheres, four at once with SSE2 (else one by one): the
+/// steps of world_sphere_roots() with F = Float4, a = |d|² and 1/a shared by the lanes.
 inline SphereGroupRoots sphere_group_roots(const SphereGroup& g, const Ray& r) {
     SphereGroupRoots out;
     const unsigned used = (1u << g.count) - 1;
-    const Vec3 d = r.direction;
-    const float a = dot(d, d);
+    const Lane3<float> d1{r.direction.x, r.direction.y, r.direction.z};
+    const float a = dot(d1, d1);
     if (!(a > 0)) {  // world_sphere_roots() goes to double for every sphere
         out.slow = used;
         return out;
     }
 #if defined(__SSE2__)
+    using F = Float4;
     const float inv_a = 1.0f / a;
-    const __m128 dx = _mm_set1_ps(d.x), dy = _mm_set1_ps(d.y), dz = _mm_set1_ps(d.z);
-    const __m128 ox = _mm_sub_ps(_mm_set1_ps(r.origin.x), _mm_loadu_ps(g.cx));
-    const __m128 oy = _mm_sub_ps(_mm_set1_ps(r.origin.y), _mm_loadu_ps(g.cy));
-    const __m128 oz = _mm_sub_ps(_mm_set1_ps(r.origin.z), _mm_loadu_ps(g.cz));
-    const __m128 rr = _mm_loadu_ps(g.rr);
-    auto dot3 = [](__m128 x0, __m128 y0, __m128 z0, __m128 x1, __m128 y1, __m128 z1) {
-        return _mm_add_ps(_mm_add_ps(_mm_mul_ps(x0, x1), _mm_mul_ps(y0, y1)), _mm_mul_ps(z0, z1));
-    };
-    const __m128 b = dot3(ox, oy, oz, dx, dy, dz);
-    const __m128 oo = dot3(ox, oy, oz, ox, oy, oz);
-    const __m128 c = _mm_sub_ps(oo, rr);
-    const __m128 sign = _mm_set1_ps(-0.0f);
-    // |c| < 2^-17 · max(|o|², ρ²): the double path (std::max(oo, rr) is _mm_max_ps(rr, oo))
-    const __m128 slow =
-        _mm_cmplt_ps(_mm_andnot_ps(sign, c), _mm_mul_ps(_mm_set1_ps(0x1p-17f), _mm_max_ps(rr, oo)));
-    // l = o − d·(b/a), disc = a·(ρ² − |l|²)
-    const __m128 s = _mm_mul_ps(b, _mm_set1_ps(inv_a));
-    const __m128 lx = _mm_sub_ps(ox, _mm_mul_ps(dx, s));
-    const __m128 ly = _mm_sub_ps(oy, _mm_mul_ps(dy, s));
-    const __m128 lz = _mm_sub_ps(oz, _mm_mul_ps(dz, s));
-    const __m128 disc = _mm_mul_ps(_mm_set1_ps(a), _mm_sub_ps(rr, dot3(lx, ly, lz, lx, ly, lz)));
-    const __m128 hit = _mm_cmpnlt_ps(disc, _mm_setzero_ps());  // !(disc < 0)
-    out.slow = static_cast<unsigned>(_mm_movemask_ps(slow)) & used;
-    out.hit = static_cast<unsigned>(_mm_movemask_ps(hit)) & used & ~out.slow;
+    const Lane3<F> d{F(d1.x), F(d1.y), F(d1.z)};
+    const Lane3<F> o{F(r.origin.x) - F::load(g.cx), F(r.origin.y) - F::load(g.cy),
+                     F(r.origin.z) - F::load(g.cz)};
+    const F rr = F::load(g.rr);
+    const ray_sphere::Terms<F> k = ray_sphere::terms(o, d, rr);
+    out.slow = ray_sphere::needs_double(k.c, k.oo, rr).bits() & used;
+    const F disc = ray_sphere::discriminant(o, d, k.b, F(a), F(inv_a), rr);
+    out.hit = ~(disc < F(0.0f)).bits() & used & ~out.slow;
     if (out.hit == 0) return out;  // no root to find: spare the square root and division
-    // q = −(b + copysign(√disc, b)); roots c/q and q/a, the smaller first
-    const __m128 root = _mm_sqrt_ps(disc);
-    const __m128 signed_root = _mm_or_ps(_mm_andnot_ps(sign, root), _mm_and_ps(sign, b));
-    const __m128 q = _mm_xor_ps(sign, _mm_add_ps(b, signed_root));
-    const __m128 f0 = _mm_div_ps(c, q), f1 = _mm_mul_ps(q, _mm_set1_ps(inv_a));
-    _mm_storeu_ps(out.t0, _mm_min_ps(f1, f0));  // std::min(f0, f1): f1 < f0 ? f1 : f0
-    _mm_storeu_ps(out.t1, _mm_max_ps(f1, f0));  // std::max(f0, f1): f0 < f1 ? f1 : f0
+    F t0, t1;
+    ray_sphere::roots(k.b, k.c, disc, F(inv_a), t0, t1);
+    t0.store(out.t0);
+    t1.store(out.t1);
 #else
     out = sphere_group_roots_one_by_one(g, r);
 #endif

@@ -1,4 +1,5 @@
-// Tessellation of shapes into triangles with analytic normals, for the zbuffer pipeline.
+// Tessellation of shapes into triangles with analytic normals, for the zbuffer pipeline: each
+// shape's in shapes/<name>.h, dispatched by shapes.cpp.
 #pragma once
 
 #include "geometry/shape.h"

@@ -6,30 +6,19 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/ray_sphere.h"
+
 namespace luz {
 
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-/// Ray–sphere hit in (0, t_max) for a light sphere (centre c, radius r), nearest first.
-bool hit_light_sphere(const Ray& ray, const Vec3& c, float r, float& t) {
-    const Vec3 oc = ray.origin - c;
-    const float b = dot(oc, ray.direction);
-    const float cc = dot(oc, oc) - r * r;
-    const float disc = b * b - cc;
-    if (disc < 0) return false;
-    const float s = std::sqrt(disc);
-    const float t0 = -b - s, t1 = -b + s;
-    if (t0 > 0) {
-        t = t0;
-        return true;
-    }
-    if (t1 > 0) {
-        t = t1;
-        return true;
-    }
-    return false;
+/// Ray–sphere hit in (0, t_max) for a light sphere (centre c, radius r), nearest first: the
+/// scene's one ray–sphere routine (geometry/ray_sphere.h).
+bool hit_light_sphere(const Ray& ray, const Vec3& c, float r, float t_max, float& t) {
+    float t0, t1;
+    return world_sphere_roots(c, r, ray, t0, t1) && nearest_root(t0, t1, 0.0f, t_max, t);
 }
 
 }  // namespace
@@ -61,7 +50,7 @@ int RayTracer::nearest_light(const Ray& ray, float& t_max, TraceCounters& counte
         const Light& light = settings_.lights[j];
         ++counters.tests.primitive;
         float t;
-        if (hit_light_sphere(ray, light.position, light.radius, t) && t < t_max) {
+        if (hit_light_sphere(ray, light.position, light.radius, t_max, t)) {
             t_max = t;
             nearest = j;
         }
@@ -132,6 +121,8 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, fl
         auto visibility = [&](size_t, const Vec3& P, const Vec3& L, float d) {
             ++counters.shadow;
             // The segment P → light j moved by the spawn offset (≤ 1e-4): direction L, length d.
+            // Only the scene's objects can block it: light spheres never block shadow rays
+            // (they are not in the scene the query sees; scene_query.h).
             return transmittance(scene_, desc.materials, spawn_ray(P, sp.Ng, L), 0.0f, d,
                                  counters.tests);
         };

@@ -84,8 +84,8 @@ ZbufferGeometry prepare_zbuffer(const BuiltScene& scene, const Settings& setting
 }
 
 void render_zbuffer(const BuiltScene& scene, const Settings& settings,
-                    const ZbufferGeometry& geometry,
-                    const RenderControl& control, Image& out, RenderStats& stats) {
+                    const ZbufferGeometry& geometry, const RenderControl& control, Image& out,
+                    RenderStats& stats) {
     const ImageDesc& img = settings.image;
     const Camera camera = Camera::from(settings.camera, img.width, img.height);
     if (out.width != img.width || out.height != img.height) out = Image(img.width, img.height);
@@ -107,8 +107,8 @@ void render_zbuffer(const BuiltScene& scene, const Settings& settings,
     // 1–2. Project every vertex; clip and bin the triangles into tiles.
     const Rasterizer raster(geometry.mesh, camera, img.width, img.height, layout, control.threads);
     stats.triangles += raster.triangles();
-    const ZbufferFrame f{scene, settings, geometry, raster, camera,
-                         settings.camera.projection == Projection::perspective};
+    const ZbufferFrame f{scene,  settings, geometry,
+                         raster, camera,   settings.camera.projection == Projection::perspective};
 
     // 3. Rasterize and shade each tile.
     const size_t tile_count = raster.tile_count();

@@ -1,8 +1,6 @@
 // Tests of intersect() and surface_at(): known hits of every shape, rays from inside, misses,
 // grazing rays, the (t_min, t_max) interval, transformed shapes, outward unit normals, the torus
 // against a brute-force march, open ends of cylinders and cones, watertight shared edges.
-#include "geometry/intersect.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/shapes.h"
 #include "geometry_fixtures.h"
 
 namespace luz::test {

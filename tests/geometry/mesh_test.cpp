@@ -7,8 +7,8 @@
 #include <cmath>
 #include <memory>
 
-#include "geometry/intersect.h"
 #include "geometry/shape.h"
+#include "geometry/shapes.h"
 #include "math/transform.h"
 #include "scene/input_error.h"
 

@@ -14,7 +14,7 @@
 #include <set>
 #include <vector>
 
-#include "geometry/intersect.h"
+#include "geometry/shapes.h"
 #include "geometry_fixtures.h"
 
 namespace luz {

@@ -1,0 +1,163 @@
+// What the scene-query strategies share (scene_query.h): the nearest-hit tie rule (Best), the
+// transparent crossings of a shadow ray (Crossings), one shape or triangle offered to either,
+// and the strategies' entry points (query_bvh.cpp, query_all.cpp, query_direct.cpp).
+#pragma once
+
+#include <cstdint>
+#include <utility>
+
+#include "geometry/ray_triangle.h"
+#include "geometry/scene_query.h"
+#include "geometry/shapes.h"
+#include "math/next_float.h"
+
+namespace luz::query {
+
+inline Vec3 inverse_direction(const Vec3& d) { return {1.0f / d.x, 1.0f / d.y, 1.0f / d.z}; }
+
+/// The nearest hit so far, ordered by (t, shape, triangle): whatever order primitives are
+/// tested in, the lowest of these wins.
+struct Best {
+    explicit Best(float t_max) : t(t_max) {}
+    float t;  // t_max until something is found
+    uint32_t shape = 0, triangle = 0;
+    bool found = false;
+    Hit hit;
+
+    /// The t_max for a primitive test: ties with the best must still be reported.
+    float limit() const { return found ? next_up(t) : t; }
+    bool better(float t2, uint32_t s, uint32_t tri) const {
+        return !found || t2 < t || (t2 == t && (s < shape || (s == shape && tri < triangle)));
+    }
+    void take(float t2, uint32_t s, uint32_t tri, float u, float v, int part) {
+        t = t2;
+        shape = s;
+        triangle = tri;
+        found = true;
+        hit.t = t2;
+        hit.shape = static_cast<int>(s);
+        hit.u = u;
+        hit.v = v;
+        hit.part = part;
+    }
+};
+
+/// Shape i (not a mesh) against r.
+inline void offer_shape(const BuiltScene& scene, uint32_t i, const Ray& r, float t_min, Best& best,
+                        IntersectCounters& counters) {
+    ++counters.primitive;
+    Hit h;
+    if (intersect(scene.shapes[i], r, t_min, best.limit(), h) && best.better(h.t, i, 0)) {
+        best.take(h.t, i, 0, h.u, h.v, h.part);
+    }
+}
+
+/// Triangle `tri` of shape i, vertices p0, p1, p2, against r.
+inline void offer_triangle(const WatertightRay& w, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                           uint32_t i, uint32_t tri, float t_min, Best& best,
+                           IntersectCounters& counters) {
+    ++counters.primitive;
+    float t, b1, b2;
+    if (intersect_triangle(w, p0, p1, p2, t_min, best.limit(), t, b1, b2) &&
+        best.better(t, i, tri)) {
+        best.take(t, i, tri, b1, b2, static_cast<int>(tri));
+    }
+}
+
+/// Transparent crossings counted per material; their product is taken in material order.
+class Crossings {
+  public:
+    void add(int material, uint32_t times, float transparency) {
+        for (int k = 0; k < n_; ++k) {
+            if (material_[k] == material) {
+                count_[k] += times;
+                return;
+            }
+        }
+        if (n_ == kMax) {
+            for (uint32_t c = 0; c < times; ++c) overflow_ *= transparency;
+            return;
+        }
+        material_[n_] = material;
+        count_[n_] = times;
+        transparency_[n_] = transparency;
+        ++n_;
+    }
+    float product() {
+        // insertion sort by material (n ≤ 32)
+        for (int i = 1; i < n_; ++i) {
+            for (int j = i; j > 0 && material_[j - 1] > material_[j]; --j) {
+                std::swap(material_[j - 1], material_[j]);
+                std::swap(count_[j - 1], count_[j]);
+                std::swap(transparency_[j - 1], transparency_[j]);
+            }
+        }
+        float T = 1.0f;
+        for (int k = 0; k < n_; ++k)
+            for (uint32_t c = 0; c < count_[k]; ++c) T *= transparency_[k];
+        return T * overflow_;
+    }
+
+  private:
+    static constexpr int kMax = 32;
+    int material_[kMax];
+    uint32_t count_[kMax];
+    float transparency_[kMax];
+    int n_ = 0;
+    float overflow_ = 1.0f;  // beyond kMax materials: multiplied as found
+};
+
+/// Records n > 0 crossings of a surface of `material`; false if it is opaque (it blocks).
+inline bool add_crossings(const Materials& materials, int material, uint32_t n,
+                          Crossings& crossings) {
+    const float transparency = materials[material].transparency;
+    if (transparency <= 0) return false;
+    crossings.add(material, n, transparency);
+    return true;
+}
+
+/// Every crossing of shape i (not a mesh) with r in (t_min, t_max); false on an opaque one.
+/// Inlined: it is the inner loop of every shadow ray.
+[[gnu::always_inline]] inline bool cross_shape(const BuiltScene& scene, const Materials& materials,
+                                               uint32_t i, const Ray& r, float t_min, float t_max,
+                                               Crossings& crossings, IntersectCounters& counters) {
+    const Shape& s = scene.shapes[i];
+    const bool opaque = materials[s.material].transparency <= 0;
+    const uint32_t n = count_crossings(s, r, t_min, t_max, opaque, counters.primitive);
+    return n == 0 || add_crossings(materials, s.material, n, crossings);
+}
+
+/// Triangle `tri` of mesh shape i; false if it blocks (opaque).
+inline bool cross_triangle(const BuiltScene& scene, const Materials& materials,
+                           const WatertightRay& w, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                           uint32_t i, uint32_t tri, float t_min, float t_max, Crossings& crossings,
+                           IntersectCounters& counters) {
+    ++counters.primitive;
+    float t, b1, b2;
+    if (!intersect_triangle(w, p0, p1, p2, t_min, t_max, t, b1, b2)) return true;
+    return add_crossings(materials, scene.shapes[i].mesh->materials[tri], 1, crossings);
+}
+
+// The strategies: each answers nearest_hit() and transmittance() (scene_query.h) alone.
+
+/// The scene's BVH, planes apart (query_bvh.cpp).
+bool nearest_hit_bvh(const BuiltScene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
+                     IntersectCounters& counters);
+float transmittance_bvh(const BuiltScene& scene, const Materials& materials, const Ray& r,
+                        float t_min, float t_max, IntersectCounters& counters);
+
+/// Every shape and mesh triangle in scene order, shapes behind their bounds (query_all.cpp).
+bool nearest_hit_all(const BuiltScene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
+                     IntersectCounters& counters);
+float transmittance_all(const BuiltScene& scene, const Materials& materials, const Ray& r,
+                        float t_min, float t_max, IntersectCounters& counters);
+
+/// A small scene without meshes (BuiltScene::direct): shape by shape, world-form spheres four at
+/// a time (query_direct.cpp). prepare_direct() decides `direct` and groups the spheres.
+void prepare_direct(BuiltScene& scene);
+bool nearest_hit_direct(const BuiltScene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
+                        IntersectCounters& counters);
+float transmittance_direct(const BuiltScene& scene, const Materials& materials, const Ray& r,
+                           float t_min, float t_max, IntersectCounters& counters);
+
+}  // namespace luz::query

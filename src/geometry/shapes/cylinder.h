@@ -1,0 +1,105 @@
+// Cylinder: radius 1 around +z, z ∈ [0, 1] in object space, placed from `base` along `axis` by
+// `radius` and `height`; `caps` closes z = 0 and z = 1 (Hit::part part_cap0, part_cap1).
+#pragma once
+
+#include <cstdint>
+
+#include "geometry/shapes/caps.h"
+#include "geometry/shapes/emitter.h"
+#include "geometry/shapes/object_space.h"
+#include "geometry/shapes/placement.h"
+
+namespace luz::shapes {
+
+struct cylinder {
+    static constexpr bool bounded = true;
+
+    static void place(const ObjectDesc& o, Shape& s) {
+        set_transform(s, o, frame_along(o.axis, o.radius, o.radius, o.height, o.base));
+        s.caps = o.caps;
+    }
+
+    static Bounds3 bounds(const Shape& s) {
+        // The two rims (ellipses in world space) bound the whole cylinder.
+        const Affine& M = s.transform.world_from_object;
+        const Vec3 U = column(M, 0), V = column(M, 1), W = column(M, 2);
+        Bounds3 b = ellipse_bounds(origin(M), U, V);
+        b.expand(ellipse_bounds(origin(M) + W, U, V));
+        return pad(b);
+    }
+
+    static bool hit_object(const Shape& s, const Ray& ro, Nearest& n) {
+        const D3 o = to_d3(ro.origin), d = to_d3(ro.direction);
+        const double a = d.x * d.x + d.y * d.y;
+        if (a > 0) {
+            const double b = o.x * d.x + o.y * d.y, c = o.x * o.x + o.y * o.y - 1.0;
+            // as for the sphere, in the xy projection: disc = a·(1 − |o⊥ − (b/a)·d⊥|²)
+            const double lx = o.x - b / a * d.x, ly = o.y - b / a * d.y;
+            const double disc = a * (1.0 - (lx * lx + ly * ly));
+            if (disc >= 0) {
+                double r[2];
+                quadratic_roots(a, b, c, disc, r[0], r[1]);
+                for (double t : r) {
+                    const double z = o.z + t * d.z;
+                    if (z >= 0 && z <= 1) n.offer(t, part_side);
+                }
+            }
+        }
+        if (s.caps) hit_caps(o, d, true, n);
+        return n.found;
+    }
+
+    static bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit) {
+        return intersect_in_object_space(s, r, t_min, t_max, hit, [&](const Ray& ro, Nearest& n) {
+            return hit_object(s, ro, n);
+        });
+    }
+
+    static uint32_t count_crossings(const Shape& s, const Ray& r, float t_min, float t_max,
+                                    bool first_only, uint64_t& tests) {
+        return count_by_repeated_hits(
+            t_min, t_max, first_only, tests,
+            [&](float t0, float t1, Hit& h) { return intersect(s, r, t0, t1, h); });
+    }
+
+    static SurfacePoint surface_at(const Shape& s, const Ray& r, const Hit& hit) {
+        return surface_from_object_normal(s, r, hit, [](const Vec3& p, int part) {
+            if (part == part_side) return unit_or({p.x, p.y, 0}, {1, 0, 0});
+            return Vec3{0, 0, part == part_cap0 ? -1.0f : 1.0f};
+        });
+    }
+
+    /// One segment along the side (normals are constant along it), optional caps.
+    static void tessellate(const Shape& s, int level, TriangleMesh& out) {
+        Emitter e(s.transform, out);
+        const int n = level;
+        const Circle circle(n);
+        e.reserve(2 * size_t(n) + (s.caps ? 2 * size_t(n + 1) : 0),
+                  2 * size_t(n) + (s.caps ? 2 * n : 0));
+        uint32_t bottom = 0;
+        for (int j = 0; j < n; ++j) {
+            const Vec3 nr{circle.c[j], circle.s[j], 0};
+            const uint32_t b = e.vertex({circle.c[j], circle.s[j], 0}, nr);
+            e.vertex({circle.c[j], circle.s[j], 1}, nr);
+            if (j == 0) bottom = b;
+        }
+        // Vertex (j, 0) is bottom + 2j, (j, 1) is bottom + 2j + 1; φ̂ × ẑ = r̂.
+        for (int j = 0; j < n; ++j) {
+            const uint32_t a = bottom + 2 * j, b = bottom + 2 * ((j + 1) % n);
+            e.quad(a, b, b + 1, a + 1);
+        }
+        if (s.caps) {
+            emit_cap(e, circle, 0.0f, false);
+            emit_cap(e, circle, 1.0f, true);
+        }
+    }
+
+    /// 2πrh + 2πr² (the caps).
+    static double area(const Shape& s) {
+        const Affine& M = s.transform.world_from_object;
+        const double r = 0.5 * (axis_length(M, 0) + axis_length(M, 1)), h = axis_length(M, 2);
+        return 2.0 * pi * r * h + (s.caps ? 2.0 * pi * r * r : 0.0);
+    }
+};
+
+}  // namespace luz::shapes
