@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# The package test: installs luz into a temporary prefix, builds examples/ against it with
+# find_package(luz), and checks that examples/minimal writes the very bytes `luz render` writes.
+# Usage: install_test.sh BUILD_DIR SOURCE_DIR [BUILD_TYPE]
+set -euo pipefail
+build_dir=$1
+source_dir=$2
+build_type=${3:-Release}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+cmake --install "$build_dir" --prefix "$tmp/prefix" >/dev/null
+test -x "$tmp/prefix/bin/luz"
+test -f "$tmp/prefix/include/luz/luz.h"
+test -f "$tmp/prefix/lib/cmake/luz/luzConfig.cmake" ||
+  test -f "$tmp"/prefix/lib/*/cmake/luz/luzConfig.cmake
+cmake -S "$source_dir/examples" -B "$tmp/build" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" \
+  -DCMAKE_PREFIX_PATH="$tmp/prefix" >/dev/null
+cmake --build "$tmp/build" >/dev/null
+"$tmp/build/minimal" "$tmp/minimal.png"
+"$tmp/prefix/bin/luz" render demo:primitives -o "$tmp/cli.png" -q
+cmp "$tmp/minimal.png" "$tmp/cli.png"
+echo "examples/minimal wrote the same $(stat -c %s "$tmp/cli.png") bytes as luz render"
