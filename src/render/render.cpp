@@ -37,9 +37,13 @@ Image render(const BuiltScene& scene, const Settings& settings, const RenderCont
             stats.triangles += scene.mesh_triangles;  // raytrace: triangles in meshes (SPEC §3)
             break;
     }
-    stats.bvh_nodes = scene.bvh.nodes().size();
-    stats.bvh_build_seconds = scene.bvh_build_seconds;
-    stats.bvh_bytes = scene.bvh_bytes();
+    if (settings.render.pipeline != Pipeline::zbuffer) {
+        // Only rays use the BVH: a zbuffer render reports none, even when an earlier ray-traced
+        // render of the same scene built one (and never reads it while another builds it).
+        stats.bvh_nodes = scene.bvh.nodes().size();
+        stats.bvh_build_seconds = scene.bvh_build_seconds;
+        stats.bvh_bytes = scene.bvh_bytes();
+    }
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
 }

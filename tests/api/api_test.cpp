@@ -4,6 +4,7 @@
 
 #include <cstring>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "luz/luz.h"
 
@@ -96,6 +97,26 @@ TEST(Api, BvhIsBuiltOnceOnTheFirstRayTracedRender) {
     SceneDesc r = d;
     r.render.pipeline = Pipeline::raytrace;
     EXPECT_TRUE(same_bits(a, fresh(r)));
+}
+
+TEST(Api, ThreadsRenderOneSceneWithDifferentSettingsAtOnce) {
+    const SceneDesc d = small("demo:bunny", "zbuffer");
+    Settings ray = d;
+    ray.render.pipeline = Pipeline::raytrace;
+    ray.lights[0].intensity = Rgb{0.5f};
+    const Scene scene = build(d);  // no BVH yet: the ray-traced render builds it meanwhile
+    Frame zf, rf;
+    std::thread a([&] { zf = render(scene, d); });
+    std::thread b([&] { rf = render(scene, ray); });
+    a.join();
+    b.join();
+    EXPECT_EQ(scene.build_counts().bvh, 1);
+    EXPECT_EQ(zf.stats.bvh_nodes, 0u);  // a zbuffer render uses no BVH
+    EXPECT_GT(rf.stats.bvh_nodes, 0u);
+    EXPECT_TRUE(same_bits(zf.image, fresh(d)));
+    SceneDesc r = d;
+    static_cast<Settings&>(r) = ray;
+    EXPECT_TRUE(same_bits(rf.image, fresh(r)));
 }
 
 TEST(Api, SettingsWithTooFewMaterialsAreRefused) {
