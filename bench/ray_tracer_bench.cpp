@@ -16,16 +16,17 @@ using namespace luz;
 
 void trace_whitted(benchmark::State& state, const char* pipeline) {
     const int width = static_cast<int>(state.range(0)), height = width * 3 / 4;
-    const BuiltScene scene = build_scene(
+    const SceneDesc desc =
         load_scene("demo:whitted", {{"render.pipeline", std::string("\"") + pipeline + "\""},
                                     {"image.width", std::to_string(width)},
-                                    {"image.height", std::to_string(height)}}));
+                                    {"image.height", std::to_string(height)}});
+    const BuiltScene scene = build_scene(desc);
     RenderControl control;
     control.threads = 1;
     RenderStats total;
     for (auto _ : state) {
         RenderStats stats;
-        const Image image = render(scene, control, stats);
+        const Image image = render(scene, desc, control, stats);
         benchmark::DoNotOptimize(image.pixels.data());
         total.rays_primary += stats.rays_primary;
         total.rays_shadow += stats.rays_shadow;

@@ -74,9 +74,16 @@ struct Options {
 // ---------------------------------------------------------------------------------------------
 // The workload
 
+/// A description and the runtime scene built from it (the scene no longer carries its
+/// description: renders take the settings beside it).
+struct TorusScene {
+    SceneDesc desc;
+    BuiltScene scene;
+};
+
 /// The benchmark scene: one torus seen at 45° from its axis, filling most of a 1024² image,
 /// orthographic camera, one white point light, phong.
-BuiltScene torus_scene(int level) {
+TorusScene torus_scene(int level) {
     SceneDesc d;
     d.name = "bench_torus";
     d.source = "zbuffer_vs_llvmpipe";
@@ -109,7 +116,8 @@ BuiltScene torus_scene(int level) {
     torus.major_radius = 1.0f;
     torus.minor_radius = 0.4f;
     d.objects = {torus};
-    return build_scene(std::move(d));
+    BuiltScene scene = build_scene(d);
+    return {std::move(d), std::move(scene)};
 }
 
 /// FNV-1a over the mesh arrays: both processes must render the very same data.
@@ -301,8 +309,8 @@ GLuint compile(const Gl& gl, GLenum type, const char* source) {
 /// prints the results on standard output and writes the RGBA8 image (rows top to bottom) to
 /// `image_path`.
 int llvmpipe_child(int level, const std::string& image_path, const Options& opt) {
-    const BuiltScene scene = torus_scene(level);
-    const ZbufferGeometry geometry = prepare_zbuffer(scene);
+    const TorusScene torus = torus_scene(level);
+    const ZbufferGeometry geometry = prepare_zbuffer(torus.scene, torus.desc);
     const TriangleMesh& mesh = geometry.mesh;
     static_assert(sizeof(Vec3) == 3 * sizeof(float));
 
@@ -384,7 +392,7 @@ int llvmpipe_child(int level, const std::string& image_path, const Options& opt)
 
     // clip_from_world: x = (p−eye)·u / half_width, y = (p−eye)·v / half_height (SPEC §1.3),
     // z = the view depth −(p−eye)·w mapped from [near, far] (the mesh's extent) to [−1, 1].
-    const SceneDesc& desc = scene.desc;
+    const SceneDesc& desc = torus.desc;
     const Camera cam = Camera::from(desc.camera, kWidth, kHeight);
     float near = 1e30f, far = -1e30f;
     for (const Vec3& p : mesh.positions) {
@@ -589,13 +597,13 @@ class LlvmpipeChild {
 // luz
 
 /// One luz frame of prepared geometry on `threads` threads, into `out`.
-std::function<void()> luz_frame(const BuiltScene& scene, const ZbufferGeometry& g, int threads,
-                                Image& out) {
-    return [&scene, &g, threads, &out] {
+std::function<void()> luz_frame(const BuiltScene& scene, const Settings& settings,
+                                const ZbufferGeometry& g, int threads, Image& out) {
+    return [&scene, &settings, &g, threads, &out] {
         RenderControl control;
         control.threads = threads;
         RenderStats stats;
-        render_zbuffer(scene, g, control, out, stats);
+        render_zbuffer(scene, settings, g, control, out, stats);
     };
 }
 
@@ -714,22 +722,25 @@ struct Breakdown {
 };
 
 Breakdown luz_breakdown(int level, const Options& opt) {
-    const BuiltScene full = torus_scene(level);
-    const ZbufferGeometry g = prepare_zbuffer(full);  // the same mesh for every variant
-    BuiltScene behind = full;
-    behind.desc.camera.look_at = {0, 0, 20};  // looking along +z from z = 10: torus behind
-    BuiltScene offscreen = full;
-    offscreen.desc.camera.position.x -= 2.5f * full.desc.camera.view_height;
-    offscreen.desc.camera.look_at.x -= 2.5f * full.desc.camera.view_height;
-    BuiltScene tiny = full;
-    tiny.desc.camera.view_height *= 64.0f;
-    BuiltScene unlit = full;
-    unlit.desc.lights.clear();
+    const TorusScene torus = torus_scene(level);
+    // The same scene and mesh for every variant; only the settings differ.
+    const ZbufferGeometry g = prepare_zbuffer(torus.scene, torus.desc);
+    const Settings full = torus.desc;
+    Settings behind = full;
+    behind.camera.look_at = {0, 0, 20};  // looking along +z from z = 10: torus behind
+    Settings offscreen = full;
+    offscreen.camera.position.x -= 2.5f * full.camera.view_height;
+    offscreen.camera.look_at.x -= 2.5f * full.camera.view_height;
+    Settings tiny = full;
+    tiny.camera.view_height *= 64.0f;
+    Settings unlit = full;
+    unlit.lights.clear();
     Image out;
     std::vector<std::function<Batch(int)>> configs;
-    for (const BuiltScene* s :
-         std::initializer_list<const BuiltScene*>{&behind, &offscreen, &tiny, &unlit, &full})
-        configs.push_back([&, s](int k) { return run_batch(luz_frame(*s, g, 1, out), k); });
+    for (const Settings* s :
+         std::initializer_list<const Settings*>{&behind, &offscreen, &tiny, &unlit, &full})
+        configs.push_back(
+            [&, s](int k) { return run_batch(luz_frame(torus.scene, *s, g, 1, out), k); });
     const std::vector<Timing> t = side_by_side(configs, opt);
     return {t[0], t[1], t[2], t[3], t[4]};
 }
@@ -813,14 +824,14 @@ int run(int argc, char** argv) {
     if (child_level > 0) return llvmpipe_child(child_level, child_image, opt);
 
     if (opt.profile_level > 0) {  // a few luz frames and nothing else
-        const BuiltScene scene = torus_scene(opt.profile_level);
-        const ZbufferGeometry g = prepare_zbuffer(scene);
+        const TorusScene torus = torus_scene(opt.profile_level);
+        const ZbufferGeometry g = prepare_zbuffer(torus.scene, torus.desc);
         RenderControl control;
         control.threads = opt.profile_threads;
         Image out;
         for (int f = 0; f < opt.profile_frames; ++f) {
             RenderStats stats;
-            render_zbuffer(scene, g, control, out, stats);
+            render_zbuffer(torus.scene, torus.desc, g, control, out, stats);
         }
         std::printf("profiled %d frames of %zu triangles\n", opt.profile_frames,
                     g.mesh.triangle_count());
@@ -846,8 +857,8 @@ int run(int argc, char** argv) {
     for (const BenchSize& size : opt.sizes) {
         Row row;
         row.size = size;
-        const BuiltScene scene = torus_scene(size.level);
-        const ZbufferGeometry g = prepare_zbuffer(scene);
+        const TorusScene torus = torus_scene(size.level);
+        const ZbufferGeometry g = prepare_zbuffer(torus.scene, torus.desc);
         row.triangles = g.mesh.triangle_count();
         const uint64_t hash = mesh_hash(g.mesh);
         std::fprintf(stderr, "[%s] level %d: %zu triangles, %zu vertices, mesh hash %016llx\n",
@@ -873,8 +884,9 @@ int run(int argc, char** argv) {
         }
         if (opt.luz) {
             for (int t = 1; t <= 2; ++t)
-                configs.push_back(
-                    [&, t](int k) { return run_batch(luz_frame(scene, g, t, image), k); });
+                configs.push_back([&, t](int k) {
+                    return run_batch(luz_frame(torus.scene, torus.desc, g, t, image), k);
+                });
         }
         const std::vector<Timing> timings = side_by_side(configs, opt);
         size_t next = 0;
