@@ -43,6 +43,19 @@ inline auto needs_double(F c, F oo, F rr) {
     return lane_abs(c) < F(0x1p-17f) * lane_max(oo, rr);
 }
 
+/// A division-free test that the line surely misses, for the many rays that do (every ray
+/// tests the light spheres): the textbook discriminant b² − a·c below −2^-12·(b² + a·(|o|² + ρ²)).
+/// The rounding errors of that form and of discriminant() (float or double) are each a few
+/// tens of ulp of b² + a·(|o|² + ρ²), far below the margin, so discriminant() is then
+/// negative too: the pre-test changes no result, it only spares the division. NaN and
+/// infinite terms never pass it. Valid for a ≥ kMinPreTestA (no denormal terms).
+inline constexpr float kMinPreTestA = 0x1p-64f;
+template <class F>
+inline auto surely_misses(F a, const Terms<F>& k, F rr) {
+    const F bb = k.b * k.b;
+    return bb - a * k.c < F(-0x1p-12f) * (bb + a * (k.oo + rr));
+}
+
 /// disc = b² − a·c computed as a·(ρ² − |o − d·(b/a)|²): no cancellation for distant origins
 /// (Haines et al., "Precision improvements for ray/sphere intersection", Ray Tracing Gems ch. 7).
 template <class F>
@@ -83,8 +96,9 @@ bool world_sphere_roots_double(const Vec3& centre, float radius, const Ray& r, f
                                float& t1);
 
 /// The roots t0 ≤ t1 of world ray r with the sphere of `centre` and `radius` (a sphere in world
-/// form, Shape::world_form, or a light sphere), false if it misses. Solved in float, or in
-/// double where float cannot be trusted (ray_sphere::needs_double).
+/// form, Shape::world_form, or a light sphere), false if it misses. A sure miss is told first
+/// without a division (ray_sphere::surely_misses); then solved in float, or in double where
+/// float cannot be trusted (ray_sphere::needs_double).
 inline bool world_sphere_roots(const Vec3& centre, float radius, const Ray& r, float& t0,
                                float& t1) {
     const Lane3<float> o{r.origin.x - centre.x, r.origin.y - centre.y, r.origin.z - centre.z};
@@ -92,6 +106,7 @@ inline bool world_sphere_roots(const Vec3& centre, float radius, const Ray& r, f
     const float rr = radius * radius;
     const float a = dot(d, d);
     const ray_sphere::Terms<float> k = ray_sphere::terms(o, d, rr);
+    if (a >= ray_sphere::kMinPreTestA && ray_sphere::surely_misses(a, k, rr)) return false;
     if (ray_sphere::needs_double(k.c, k.oo, rr) || !(a > 0)) {
         return world_sphere_roots_double(centre, radius, r, t0, t1);
     }

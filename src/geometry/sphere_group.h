@@ -72,12 +72,17 @@ inline SphereGroupRoots sphere_group_roots(const SphereGroup& g, const Ray& r) {
     }
 #if defined(__SSE2__)
     using F = Float4;
-    const float inv_a = 1.0f / a;
     const Lane3<F> d{F(d1.x), F(d1.y), F(d1.z)};
     const Lane3<F> o{F(r.origin.x) - F::load(g.cx), F(r.origin.y) - F::load(g.cy),
                      F(r.origin.z) - F::load(g.cz)};
     const F rr = F::load(g.rr);
     const ray_sphere::Terms<F> k = ray_sphere::terms(o, d, rr);
+    // Every lane a sure miss (as world_sphere_roots() tells it): no division at all.
+    if (a >= ray_sphere::kMinPreTestA &&
+        (~ray_sphere::surely_misses(F(a), k, rr).bits() & used) == 0) {
+        return out;
+    }
+    const float inv_a = 1.0f / a;
     out.slow = ray_sphere::needs_double(k.c, k.oo, rr).bits() & used;
     const F disc = ray_sphere::discriminant(o, d, k.b, F(a), F(inv_a), rr);
     out.hit = ~(disc < F(0.0f)).bits() & used & ~out.slow;
