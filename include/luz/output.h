@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "api/memory_check.h"
 #include "api/ray_tree_json.h"
@@ -30,6 +32,26 @@ std::string encode_frame(const Frame& frame, const std::string& path, Encoding e
 /// Writes the frame's image to `path` atomically (a temporary file renamed into place: a
 /// failure leaves no file and never truncates an existing one). Throws FileError.
 void write_frame(const Frame& frame, const std::string& path, Encoding encoding);
+
+/// The files a frame makes when written to `path`: the image, then each per-term image — with
+/// `-o X.EXT`, `X.NAME.EXT` in the same format; for .exr, one file X.exr holding the image and
+/// every term as layers (`NAME.R`, `NAME.G`, `NAME.B`; `depth.Y`, `tests.Y`). 8-bit formats
+/// show depth, normal and tests as pictures (aov_picture()). Each entry: (path, bytes).
+std::vector<std::pair<std::string, std::string>> encode_frame_files(const Frame& frame,
+                                                                    const std::string& path,
+                                                                    Encoding encoding);
+
+/// Writes encode_frame_files() atomically: every file to a temporary one first, then all
+/// renamed into place, so that a failure leaves none of them. Throws FileError.
+void write_frame_files(const Frame& frame, const std::string& path, Encoding encoding);
+
+/// The 8-bit picture of a per-term image: colour terms as they are; depth near bright (the
+/// nearest hit white, the farthest dark, misses black); normal as 0.5 + 0.5·N; tests through
+/// a perceptual colour map (viridis) from 0 to the frame's largest count.
+Image aov_picture(const Aov& aov);
+
+/// viridis at f in [0, 1] (the colour map of the `tests` picture; README shows its scale).
+Rgb viridis(float f);
 
 /// The --stats JSON text of a frame rendered from `desc` (the description whose settings
 /// were rendered: its pipeline, model, antialiasing, source and accel are reported).

@@ -3,10 +3,12 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "image/image.h"
 #include "luz/scene.h"
+#include "render/aov.h"       // AovKind, aov_name(), parse_aov_list(): the terms of SPEC §1.5
 #include "render/parallel.h"  // resolve_threads()
 #include "render/progress.h"  // ProgressBar: a terminal progress bar
 #include "render/ray_tree.h"
@@ -17,20 +19,31 @@
 
 namespace luz {
 
-/// A per-term image (SPEC §1.5): its name (`ambient`, `diffuse`, … `tests`) and its pixels.
+/// A per-term image (SPEC §1.5): which term, its name (`ambient`, `diffuse`, … `tests`) and its
+/// pixels, filtered with the colour's antialiasing weights. Colour terms and `normal` are RGB;
+/// `depth` and `tests` are one value per pixel, held in all three channels of `image`.
 struct Aov {
+    AovKind kind = AovKind::ambient;
     std::string name;
     Image image;
+    bool scalar() const { return aov_is_scalar(kind); }
 };
 
 /// What one render made.
 struct Frame {
     Image image;            ///< linear float RGB, unclamped, row 0 on top
-    std::vector<Aov> aovs;  ///< the per-term images asked for (none yet: SPEC §1.5 to come)
+    std::vector<Aov> aovs;  ///< the per-term images asked for, in the order asked
     RenderStats stats;      ///< what --stats writes (api/stats_json.h)
     AaMask aa_mask;         ///< which pixels adaptive antialiasing refined (when asked)
     bool complete = false;  ///< false when the render was cancelled (the image is then
                             ///< incomplete: write nothing)
+
+    /// The per-term image called `name`, or nullptr when it was not asked for.
+    const Aov* aov(std::string_view name) const {
+        for (const Aov& a : aovs)
+            if (a.name == name) return &a;
+        return nullptr;
+    }
 };
 
 /// What a render needs beyond the settings: threads, progress, cancellation, the refinement
@@ -38,6 +51,7 @@ struct Frame {
 struct RenderOptions {
     RenderControl control;
     bool want_aa_mask = false;  ///< fill Frame::aa_mask
+    std::vector<AovKind> aovs;  ///< the per-term images to fill (parse_aov_list("all", …))
 };
 
 /// Renders `scene` with `settings` (a SceneDesc is a Settings: pass it as it is, or an edited

@@ -2,7 +2,10 @@
 // its statistics and its refinement mask (include/luz/output.h).
 #include "luz/output.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <memory>
 
 namespace luz {
 
@@ -34,6 +37,103 @@ std::string encode_frame(const Frame& frame, const std::string& path, Encoding e
 
 void write_frame(const Frame& frame, const std::string& path, Encoding encoding) {
     write_file_atomically(path, encode_frame(frame, path, encoding));
+}
+
+namespace {
+
+/// viridis (matplotlib's perceptually uniform colour map, CC0) at 0, 1/8, … 1.
+constexpr float kViridis[9][3] = {
+    {0.267004f, 0.004874f, 0.329415f}, {0.282327f, 0.140926f, 0.457517f},
+    {0.253935f, 0.265254f, 0.529983f}, {0.206756f, 0.371758f, 0.553117f},
+    {0.163625f, 0.471133f, 0.558148f}, {0.127568f, 0.566949f, 0.550556f},
+    {0.134692f, 0.658636f, 0.517649f}, {0.266941f, 0.748751f, 0.440573f},
+    {0.477504f, 0.821444f, 0.318195f}};
+constexpr float kViridisEnd[3] = {0.993248f, 0.906157f, 0.143936f};  // at 1
+
+}  // namespace
+
+Rgb viridis(float f) {
+    if (!(f > 0)) f = 0;
+    if (f > 1) f = 1;
+    const float x = f * 8;
+    const int i = std::min(7, static_cast<int>(x));
+    const float t = x - static_cast<float>(i);
+    const float* a = kViridis[i];
+    const float* b = i == 7 ? kViridisEnd : kViridis[i + 1];
+    // Anchors 0 … 7 are 1/8 apart; the last segment runs from 7/8 to the end colour at 1.
+    return Rgb{a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t};
+}
+
+Image aov_picture(const Aov& aov) {
+    const Image& in = aov.image;
+    Image out(in.width, in.height);
+    switch (aov.kind) {
+        case AovKind::depth: {
+            // Near bright: the nearest hit white, the farthest grey 0.15, misses black.
+            float near = INFINITY, far = -INFINITY;
+            for (const Rgb& p : in.pixels) {
+                if (std::isfinite(p.x)) {
+                    near = std::min(near, p.x);
+                    far = std::max(far, p.x);
+                }
+            }
+            const float span = far > near ? far - near : 1.0f;
+            for (size_t k = 0; k < in.pixels.size(); ++k) {
+                const float t = in.pixels[k].x;
+                out.pixels[k] =
+                    std::isfinite(t) ? Rgb{1.0f - 0.85f * (t - near) / span} : Rgb{0.0f};
+            }
+            break;
+        }
+        case AovKind::normal:
+            for (size_t k = 0; k < in.pixels.size(); ++k)
+                out.pixels[k] = Rgb{0.5f} + in.pixels[k] * 0.5f;
+            break;
+        case AovKind::tests: {
+            float most = 0;
+            for (const Rgb& p : in.pixels) most = std::max(most, p.x);
+            for (size_t k = 0; k < in.pixels.size(); ++k)
+                out.pixels[k] = viridis(most > 0 ? in.pixels[k].x / most : 0.0f);
+            break;
+        }
+        default:
+            out = in;
+    }
+    return out;
+}
+
+std::vector<std::pair<std::string, std::string>> encode_frame_files(const Frame& frame,
+                                                                    const std::string& path,
+                                                                    Encoding encoding) {
+    ImageFormat format{};
+    format_from_path(path, format);
+    std::vector<std::pair<std::string, std::string>> files;
+    if (format == ImageFormat::exr) {  // one file: the image and every term as layers
+        std::vector<ExrLayer> layers;
+        for (const Aov& a : frame.aovs) layers.push_back({a.name, &a.image, a.scalar()});
+        files.emplace_back(path, encode_image_layers(path, frame.image, layers, encoding));
+        return files;
+    }
+    files.emplace_back(path, encode_frame(frame, path, encoding));
+    const std::filesystem::path p(path);
+    const std::string stem = (p.parent_path() / p.stem()).string();
+    const std::string ext = p.extension().string();
+    const bool eight_bit = format == ImageFormat::png || format == ImageFormat::ppm;
+    for (const Aov& a : frame.aovs) {
+        const std::string name = stem + "." + a.name + ext;
+        // The pictures of depth, normal and tests are display values: written as they are.
+        const bool picture = eight_bit && (a.scalar() || a.kind == AovKind::normal);
+        files.emplace_back(name, picture ? encode_image(name, aov_picture(a), Encoding::linear)
+                                         : encode_image(name, a.image, encoding));
+    }
+    return files;
+}
+
+void write_frame_files(const Frame& frame, const std::string& path, Encoding encoding) {
+    std::vector<std::unique_ptr<PendingFile>> pending;
+    for (auto& [name, bytes] : encode_frame_files(frame, path, encoding))
+        pending.push_back(std::make_unique<PendingFile>(name, bytes));
+    for (auto& f : pending) f->commit();
 }
 
 std::string frame_stats_json(const Frame& frame, const SceneDesc& desc) {

@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "image/image_codecs.h"
 #include "image/image_io.h"
@@ -65,19 +67,34 @@ class MemoryIStream : public Imf::IStream {
 
 }  // namespace
 
-std::string encode_exr(const Image& img) {
+std::string encode_exr(const Image& img) { return encode_exr_layers(img, {}); }
+
+std::string encode_exr_layers(const Image& img, const std::vector<ExrLayer>& layers) {
     Imf::Header header(img.width, img.height);
     header.compression() = Imf::ZIP_COMPRESSION;
-    for (const char* name : {"R", "G", "B"})
-        header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-
-    // The writer only reads through these pointers.
-    char* base = const_cast<char*>(reinterpret_cast<const char*>(img.pixels.data()));
-    const size_t x_stride = sizeof(Rgb), y_stride = sizeof(Rgb) * static_cast<size_t>(img.width);
     Imf::FrameBuffer fb;
-    fb.insert("R", Imf::Slice(Imf::FLOAT, base, x_stride, y_stride));
-    fb.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), x_stride, y_stride));
-    fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), x_stride, y_stride));
+    const size_t x_stride = sizeof(Rgb), y_stride = sizeof(Rgb) * static_cast<size_t>(img.width);
+    // Channel `name` from component `c` of `image` (the writer only reads through the pointer).
+    auto add = [&](const std::string& name, const Image& image, int c) {
+        char* base = const_cast<char*>(reinterpret_cast<const char*>(image.pixels.data()));
+        header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+        fb.insert(name, Imf::Slice(Imf::FLOAT, base + c * sizeof(float), x_stride, y_stride));
+    };
+    add("R", img, 0);
+    add("G", img, 1);
+    add("B", img, 2);
+    for (const ExrLayer& layer : layers) {
+        if (layer.image->width != img.width || layer.image->height != img.height) {
+            throw ImageError("EXR layer " + layer.name + " is not the image's size");
+        }
+        if (layer.scalar) {
+            add(layer.name + ".Y", *layer.image, 0);
+        } else {
+            add(layer.name + ".R", *layer.image, 0);
+            add(layer.name + ".G", *layer.image, 1);
+            add(layer.name + ".B", *layer.image, 2);
+        }
+    }
 
     MemoryOStream out;
     try {
@@ -90,7 +107,9 @@ std::string encode_exr(const Image& img) {
     return std::move(out.data_);
 }
 
-Image decode_exr(std::string_view bytes) {
+Image decode_exr(std::string_view bytes) { return decode_exr_layer(bytes, ""); }
+
+Image decode_exr_layer(std::string_view bytes, const std::string& layer) {
     if (bytes.size() < 4 || std::memcmp(bytes.data(), "\x76\x2f\x31\x01", 4) != 0) {
         throw ImageError("not an OpenEXR file");
     }
@@ -107,22 +126,25 @@ Image decode_exr(std::string_view bytes) {
 
         // Channels absent from the file read as 0; a luminance-only file fills all three.
         const Imf::ChannelList& channels = file.header().channels();
-        const bool has_rgb = channels.findChannel("R") != nullptr ||
-                             channels.findChannel("G") != nullptr ||
-                             channels.findChannel("B") != nullptr;
-        const bool has_y = channels.findChannel("Y") != nullptr;
-        if (!has_rgb && !has_y) throw ImageError("no R, G, B or Y channel");
+        const std::string prefix = layer.empty() ? "" : layer + ".";
+        const std::string R = prefix + "R", G = prefix + "G", B = prefix + "B", Y = prefix + "Y";
+        const bool has_rgb = channels.findChannel(R) != nullptr ||
+                             channels.findChannel(G) != nullptr ||
+                             channels.findChannel(B) != nullptr;
+        const bool has_y = channels.findChannel(Y) != nullptr;
+        if (!has_rgb && !has_y)
+            throw ImageError("no " + R + ", " + G + ", " + B + " or " + Y + " channel");
 
         Image img(static_cast<int>(w), static_cast<int>(h));
         char* base = reinterpret_cast<char*>(img.pixels.data());
         const size_t x_stride = sizeof(Rgb), y_stride = sizeof(Rgb) * static_cast<size_t>(w);
         Imf::FrameBuffer fb;
-        const char* names[3] = {"R", "G", "B"};
-        if (!has_rgb) names[0] = "Y";
+        const std::string* names[3] = {&R, &G, &B};
+        if (!has_rgb) names[0] = &Y;
         const int count = has_rgb ? 3 : 1;
         for (int c = 0; c < count; ++c) {
-            fb.insert(names[c], Imf::Slice::Make(Imf::FLOAT, base + c * sizeof(float), dw, x_stride,
-                                                 y_stride));
+            fb.insert(*names[c], Imf::Slice::Make(Imf::FLOAT, base + c * sizeof(float), dw,
+                                                  x_stride, y_stride));
         }
         file.setFrameBuffer(fb);
         file.readPixels(dw.min.y, dw.max.y);

@@ -4,8 +4,10 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "image/image.h"
+#include "image/image_io.h"
 #include "scene/scene_desc.h"
 
 namespace luz {
@@ -30,7 +32,12 @@ Image decode_pfm(std::string_view bytes);
 
 /// OpenEXR, 32-bit FLOAT channels R, G, B, ZIP compression (lossless); unclamped.
 std::string encode_exr(const Image& img);
+/// The same with further layers: NAME.R, NAME.G, NAME.B, or NAME.Y alone for a scalar layer
+/// (its value read from the first channel). Every layer has the image's size.
+std::string encode_exr_layers(const Image& img, const std::vector<ExrLayer>& layers);
 /// OpenEXR: channels R, G, B (or Y alone) of the data window, as float.
 Image decode_exr(std::string_view bytes);
+/// The same for layer `layer` (channels LAYER.R, LAYER.G, LAYER.B or LAYER.Y); "" is the image.
+Image decode_exr_layer(std::string_view bytes, const std::string& layer);
 
 }  // namespace luz

@@ -99,6 +99,11 @@ uint8_t encode_8bit_srgb(float I) {
 }
 
 std::string encode_image(const std::string& path, const Image& img, Encoding e) {
+    return encode_image_layers(path, img, {}, e);
+}
+
+std::string encode_image_layers(const std::string& path, const Image& img,
+                                const std::vector<ExrLayer>& layers, Encoding e) {
     ImageFormat format{};
     if (!format_from_path(path, format)) {
         throw ImageError(
@@ -127,7 +132,7 @@ std::string encode_image(const std::string& path, const Image& img, Encoding e) 
                 bytes = encode_pfm(img);
                 break;
             case ImageFormat::exr:
-                bytes = encode_exr(img);
+                bytes = encode_exr_layers(img, layers);
                 break;
         }
     } catch (const std::exception& ex) {
@@ -142,6 +147,15 @@ void write_image(const std::string& path, const Image& img, Encoding e) {
         write_file_atomically(path, bytes);
     } catch (const FileError& ex) {
         throw ImageError(ex.what());
+    }
+}
+
+Image read_exr_layer(const std::string& path, const std::string& layer) {
+    const std::string bytes = read_file(path);
+    try {
+        return decode_exr_layer(bytes, layer);
+    } catch (const std::exception& ex) {
+        throw ImageError(path + ": cannot read layer " + layer + ": " + ex.what());
     }
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "image/image.h"
 #include "scene/scene_desc.h"
@@ -13,6 +14,16 @@
 namespace luz {
 
 enum class ImageFormat { png, ppm, pfm, exr };
+
+/// A further layer of an EXR file (encode_exr_layers): channels NAME.R/G/B, or NAME.Y alone.
+struct ExrLayer {
+    std::string name;
+    const Image* image = nullptr;
+    bool scalar = false;
+};
+
+/// Reads layer `layer` of an EXR file (LAYER.R/G/B or LAYER.Y); for tests.
+Image read_exr_layer(const std::string& path, const std::string& layer);
 
 /// Raised when an image cannot be written or read; the message names the file.
 struct ImageError : std::runtime_error {
@@ -38,6 +49,10 @@ inline uint8_t encode_8bit(float I, Encoding e) {
 /// The bytes of `img` in the format its extension names, as write_image would write them (for
 /// files committed together with others, see atomic_file.h); throws ImageError naming `path`.
 std::string encode_image(const std::string& path, const Image& img, Encoding e = Encoding::linear);
+
+/// The same with further EXR layers (ignored by the other formats: only .exr holds layers).
+std::string encode_image_layers(const std::string& path, const Image& img,
+                                const std::vector<ExrLayer>& layers, Encoding e = Encoding::linear);
 
 /// Writes `img` to `path` in the format its extension names, atomically.
 void write_image(const std::string& path, const Image& img, Encoding e = Encoding::linear);

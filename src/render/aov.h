@@ -1,0 +1,74 @@
+// The per-term images of SPEC §1.5 (AOVs): their names, which of them a render fills, and the
+// terms of one sample that the samplers filter like the colour.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "image/image.h"
+#include "math/vec3.h"
+
+namespace luz {
+
+/// The per-term images, in the order `--aov all` lists and writes them.
+enum class AovKind : uint8_t {
+    ambient,
+    diffuse,
+    specular,
+    reflected,
+    refracted,
+    emitted,
+    shadow,
+    depth,
+    normal,
+    tests,
+};
+inline constexpr int kAovCount = 10;
+
+/// The name --aov, Frame::aovs and file names use ("ambient" … "tests").
+const char* aov_name(AovKind kind);
+
+/// Whether the term is one value per pixel (depth, tests) rather than an RGB triple.
+inline bool aov_is_scalar(AovKind kind) { return kind == AovKind::depth || kind == AovKind::tests; }
+
+/// Every kind, in order.
+std::vector<AovKind> all_aovs();
+
+/// The kinds named by `text`: names separated by commas, or "all"; each once, in the order
+/// given. Throws InputError "ORIGIN: unknown term "X"; valid: ambient, diffuse, …, all".
+std::vector<AovKind> parse_aov_list(const std::string& text, const std::string& origin);
+
+/// One sample's terms (SPEC §1.5), computed at its primary hit by the pipeline that made its
+/// colour: colour = ambient + diffuse + specular + reflected + refracted + emitted.
+/// The samplers combine samples of this type with the same weights as the colour.
+struct TermSample {
+    Rgb colour;
+    Rgb ambient, diffuse, specular, reflected, refracted, emitted, shadow;
+    Rgb normal;
+    float depth = 0;
+    float tests = 0;
+
+    TermSample& operator+=(const TermSample& o);
+    friend TermSample operator+(TermSample a, const TermSample& b) { return a += b; }
+    friend TermSample operator*(TermSample a, float w);
+};
+
+/// The colour the adaptive sampler compares (its threshold is on the colour alone).
+inline const Rgb& colour_of(const Rgb& c) { return c; }
+inline const Rgb& colour_of(const TermSample& s) { return s.colour; }
+
+/// Where a render's samples go: the image and, when asked, one image per requested term.
+/// The samplers write a pixel's filtered value with put(); Rgb samples only need the image.
+struct TermImages {
+    std::array<Image*, kAovCount> planes{};  ///< null for terms not asked for
+
+    bool any() const {
+        for (const Image* p : planes)
+            if (p) return true;
+        return false;
+    }
+};
+
+}  // namespace luz
