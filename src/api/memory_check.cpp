@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string>
 
+#include "render/aov.h"
 #include "scene/input_error.h"
 
 namespace luz {
@@ -51,14 +52,17 @@ static std::string bytes_text(uint64_t bytes) {
     return buf;
 }
 
-MemoryEstimate estimate_memory(const SceneDesc& desc) {
+MemoryEstimate estimate_memory(const SceneDesc& desc, int aov_count) {
     MemoryEstimate e;
     const int W = desc.image.width, H = desc.image.height;
-    e.image = estimate_render_bytes(W, H);
+    const uint64_t pixels = uint64_t(W < 0 ? 0 : W) * uint64_t(H < 0 ? 0 : H);
+    // Each per-term image: its float pixels and its encoded file.
+    e.image = estimate_render_bytes(W, H) + pixels * (sizeof(Rgb) + 4) * uint64_t(aov_count);
     if (desc.render.antialias.mode == AaMode::adaptive) {
-        // (W+1)×(H+1) corner colours, plus one byte a pixel for the refinement mask
-        e.antialias = uint64_t(W < 0 ? 0 : W + 1) * uint64_t(H < 0 ? 0 : H + 1) * sizeof(Rgb) +
-                      uint64_t(W < 0 ? 0 : W) * uint64_t(H < 0 ? 0 : H);
+        // (W+1)×(H+1) corner samples (colours, or colours with their terms), plus one byte a
+        // pixel for the refinement mask
+        const uint64_t sample = aov_count > 0 ? sizeof(TermSample) : sizeof(Rgb);
+        e.antialias = uint64_t(W < 0 ? 0 : W + 1) * uint64_t(H < 0 ? 0 : H + 1) * sample + pixels;
     }
     // Per triangle: tessellated (3 vertices with normals, projected copies, bins) ~ 160 bytes;
     // a mesh triangle (shared vertices, indices, material, BVH node share and leaf copy) ~ 192.
@@ -74,9 +78,9 @@ MemoryEstimate estimate_memory(const SceneDesc& desc) {
     return e;
 }
 
-void check_memory(const SceneDesc& desc, std::optional<uint64_t> limit) {
+void check_memory(const SceneDesc& desc, std::optional<uint64_t> limit, int aov_count) {
     const uint64_t max_bytes = limit ? *limit : default_memory_limit();
-    const MemoryEstimate e = estimate_memory(desc);
+    const MemoryEstimate e = estimate_memory(desc, aov_count);
     const uint64_t need = e.total();
     if (need <= max_bytes) return;
     // the key of the largest part, so that the message says what to change

@@ -22,8 +22,9 @@ struct MemoryEstimate {
 
 /// The estimate for `desc` (its meshes already loaded): image; antialiasing (grid works in
 /// bounded tiles, adaptive keeps every pixel corner); ~2·t² triangles per curved shape at
-/// tessellation t in the zbuffer; per mesh triangle its share of vertices, indices and BVH.
-MemoryEstimate estimate_memory(const SceneDesc& desc);
+/// tessellation t in the zbuffer; per mesh triangle its share of vertices, indices and BVH;
+/// `aov_count` per-term images (SPEC §1.5) asked for besides the image.
+MemoryEstimate estimate_memory(const SceneDesc& desc, int aov_count = 0);
 
 /// Half of the physical memory (or of the cgroup limit, when smaller).
 uint64_t default_memory_limit();
@@ -31,6 +32,7 @@ uint64_t default_memory_limit();
 /// Throws InputError naming the scene and the key of the largest part (`image.width`,
 /// `render.tessellation` or `objects.N.file`) when the render needs
 /// more than `limit` bytes (default_memory_limit() when not given).
-void check_memory(const SceneDesc& desc, std::optional<uint64_t> limit = std::nullopt);
+void check_memory(const SceneDesc& desc, std::optional<uint64_t> limit = std::nullopt,
+                  int aov_count = 0);
 
 }  // namespace luz

@@ -26,6 +26,18 @@ Frame render(const Scene& scene, const Settings& settings, const RenderOptions& 
     Frame frame;
     RenderControl control = options.control;
     control.aa_mask = options.want_aa_mask ? &frame.aa_mask : nullptr;
+    // The per-term images asked for, each once, in the order asked; the pipelines fill them.
+    TermPlanes planes;
+    for (AovKind kind : options.aovs) {
+        bool seen = false;
+        for (const Aov& a : frame.aovs) seen = seen || a.kind == kind;
+        if (!seen) {
+            frame.aovs.push_back(
+                Aov{kind, aov_name(kind), Image(settings.image.width, settings.image.height)});
+        }
+    }
+    for (Aov& a : frame.aovs) planes.plane[static_cast<int>(a.kind)] = &a.image;
+    control.terms = planes.any() ? &planes : nullptr;
     frame.image = render(scene.built(), settings, control, frame.stats);
     frame.complete = !(control.cancel && control.cancel->load());
     return frame;

@@ -38,6 +38,11 @@ void add_render_options(CLI::App& cmd, RenderArgs& o) {
                    "write an image of the pixels adaptive antialiasing refined, coloured by "
                    "depth (1 blue ... 6 red; others dim grey); extension as for -o")
         ->type_name("FILE");
+    cmd.add_option("--aov", o.aovs,
+                   "also write per-term images (ambient diffuse specular reflected refracted "
+                   "emitted shadow depth normal tests, comma-separated, or all): X.NAME.EXT "
+                   "beside -o X.EXT, or layers of X.exr")
+        ->type_name("NAME[,NAME...]");
     cmd.add_flag("-q,--quiet", o.quiet, "print nothing on success, no progress bar");
     cmd.add_option("--set", o.sets,
                    "override any scene key by dotted path, e.g. materials.red.n=4 or "

@@ -24,6 +24,7 @@ struct RenderArgs {
     int threads = 0;                ///< 0: all cores
     std::string stats_file;         ///< empty: no statistics file
     std::string aa_mask_file;       ///< empty: no image of the adaptively refined pixels
+    std::string aovs;               ///< --aov NAME[,NAME…] or all (SPEC §1.5)
     bool quiet = false;
     std::optional<uint64_t> max_memory;  ///< bytes; default half of physical memory
 };

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <memory>
 #include <optional>
 
 #include "app/signals.h"
@@ -22,6 +23,8 @@ int run_render(const RenderArgs& o) {
     if (!o.output.empty()) check_output_path(o.output, "-o");
     if (!o.stats_file.empty()) check_writable_target(o.stats_file, "--stats");
     if (!o.aa_mask_file.empty()) check_output_path(o.aa_mask_file, "--aa-mask");
+    const std::vector<AovKind> aovs =
+        o.aovs.empty() ? std::vector<AovKind>{} : parse_aov_list(o.aovs, "--aov " + o.aovs);
     const std::vector<Override> overrides = overrides_of(o);
 
     // 2. The scene, with --set and then the options applied; one validation names the key.
@@ -32,7 +35,7 @@ int run_render(const RenderArgs& o) {
         std::fprintf(stderr, "luz: warning: %s\n", w.c_str());
     const std::string out = o.output.empty() ? desc.name + ".png" : o.output;
     if (o.output.empty()) check_output_path(out, "default output");
-    check_memory(desc, o.max_memory);
+    check_memory(desc, o.max_memory, static_cast<int>(aovs.size()));
 
     // 3. Build, then render with a progress bar on a terminal.
     const auto start = std::chrono::steady_clock::now();
@@ -41,6 +44,7 @@ int run_render(const RenderArgs& o) {
     luz::RenderOptions options;
     options.control.threads = o.threads;
     options.want_aa_mask = !o.aa_mask_file.empty();
+    options.aovs = aovs;
     if (bar.enabled()) options.control.progress = [&bar](double f) { bar.update(f); };
     options.control.cancel = &interrupt_flag();
     set_interrupt_exits_now(false);
@@ -63,9 +67,12 @@ int run_render(const RenderArgs& o) {
     if (!o.aa_mask_file.empty()) {
         mask_file.emplace(o.aa_mask_file, encode_image(o.aa_mask_file, frame_aa_mask(frame)));
     }
-    PendingFile image_file(out, encode_frame(frame, out, desc.image.encoding));
+    // The image, then each per-term image (X.NAME.EXT, or layers of X.exr).
+    std::vector<std::unique_ptr<PendingFile>> image_files;
+    for (auto& [path, bytes] : encode_frame_files(frame, out, desc.image.encoding))
+        image_files.push_back(std::make_unique<PendingFile>(path, bytes));
     throw_if_interrupted();  // the temporary files go with their destructors
-    image_file.commit();
+    for (auto& f : image_files) f->commit();
     if (stats_file) stats_file->commit();
     if (mask_file) mask_file->commit();
 

@@ -21,6 +21,10 @@ void add_view_options(CLI::App& cmd, ViewOptions& o) {
     cmd.add_option("--click", o.click,
                    "X,Y: inspect pixel (X, Y)'s ray tree (with --screenshot, also written as "
                    "JSON next to it)");
+    cmd.add_option("--aov", o.show,
+                   "show this per-term image instead of the image (ambient, diffuse, ... tests; "
+                   "V cycles through them)")
+        ->type_name("NAME");
     cmd.add_option("--threads", o.threads, "render threads (default: all cores)")
         ->check(CLI::NonNegativeNumber);
     cmd.add_option("--width", o.width, "image width (overrides image.width)")

@@ -20,6 +20,7 @@ struct ViewOptions {
     int threads = 0;                ///< render threads, 0: all cores
     bool benchmark = false;         ///< no window: measure the preview's passes per second
     int width = 0, height = 0;      ///< image size override (--width/--height)
+    std::string show;               ///< --aov NAME: show that term instead of the image
 };
 
 /// Declares the view options on `cmd`.

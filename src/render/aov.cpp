@@ -1,6 +1,8 @@
 // The per-term images' names and the arithmetic the samplers use to filter a sample's terms.
 #include "render/aov.h"
 
+#include <algorithm>
+
 #include "scene/input_error.h"
 
 namespace luz {
@@ -23,6 +25,9 @@ std::vector<AovKind> all_aovs() {
 
 std::vector<AovKind> parse_aov_list(const std::string& text, const std::string& origin) {
     std::vector<AovKind> kinds;
+    auto add_once = [&](AovKind k) {
+        if (std::find(kinds.begin(), kinds.end(), k) == kinds.end()) kinds.push_back(k);
+    };
     auto valid = [] {
         std::string list;
         for (const char* n : kNames) list += std::string(n) + ", ";
@@ -34,11 +39,7 @@ std::vector<AovKind> parse_aov_list(const std::string& text, const std::string& 
         const std::string name =
             text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
         if (name == "all") {
-            for (AovKind k : all_aovs()) {
-                bool seen = false;
-                for (AovKind have : kinds) seen = seen || have == k;
-                if (!seen) kinds.push_back(k);
-            }
+            for (AovKind k : all_aovs()) add_once(k);
         } else {
             int found = -1;
             for (int k = 0; k < kAovCount; ++k)
@@ -46,9 +47,7 @@ std::vector<AovKind> parse_aov_list(const std::string& text, const std::string& 
             if (found < 0) {
                 throw InputError(origin + ": unknown term \"" + name + "\"; valid: " + valid());
             }
-            bool seen = false;
-            for (AovKind have : kinds) seen = seen || have == static_cast<AovKind>(found);
-            if (!seen) kinds.push_back(static_cast<AovKind>(found));
+            add_once(static_cast<AovKind>(found));
         }
         if (comma == std::string::npos) break;
         start = comma + 1;
@@ -86,6 +85,14 @@ TermSample operator*(TermSample a, float w) {
     a.depth *= w;
     a.tests *= w;
     return a;
+}
+
+void put(TermOut& out, int x, int y, const TermSample& s) {
+    out.image.at(x, y) = s.colour;
+    const Rgb values[kAovCount] = {s.ambient, s.diffuse, s.specular,   s.reflected, s.refracted,
+                                   s.emitted, s.shadow,  Rgb{s.depth}, s.normal,    Rgb{s.tests}};
+    for (int k = 0; k < kAovCount; ++k)
+        if (Image* plane = out.planes.plane[k]) plane->at(x, y) = values[k];
 }
 
 }  // namespace luz

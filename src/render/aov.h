@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "image/image.h"
@@ -59,16 +60,30 @@ struct TermSample {
 inline const Rgb& colour_of(const Rgb& c) { return c; }
 inline const Rgb& colour_of(const TermSample& s) { return s.colour; }
 
-/// Where a render's samples go: the image and, when asked, one image per requested term.
-/// The samplers write a pixel's filtered value with put(); Rgb samples only need the image.
-struct TermImages {
-    std::array<Image*, kAovCount> planes{};  ///< null for terms not asked for
+/// The images a render fills with the terms asked for (null: not asked for), each the image's
+/// size; scalar terms are written to all three channels.
+struct TermPlanes {
+    std::array<Image*, kAovCount> plane{};
 
     bool any() const {
-        for (const Image* p : planes)
+        for (const Image* p : plane)
             if (p) return true;
         return false;
     }
 };
+
+/// Where the samplers put a pixel's filtered value: the image alone (Rgb samples), or the image
+/// and the term planes (TermSample samples).
+inline void put(Image& out, int x, int y, const Rgb& colour) { out.at(x, y) = colour; }
+
+struct TermOut {
+    Image& image;
+    const TermPlanes& planes;
+};
+void put(TermOut& out, int x, int y, const TermSample& s);
+
+/// The sample type an output takes: Rgb for an Image, TermSample for a TermOut.
+template <class Out>
+using SampleFor = std::conditional_t<std::is_same_v<Out, TermOut>, TermSample, Rgb>;
 
 }  // namespace luz

@@ -164,9 +164,11 @@ void bin_chunk(const Binning& f, size_t begin, size_t end, ChunkBins& bins) {
     }
 }
 
-/// Rasterizes one triangle into a lattice's fragments (top-left fill rule).
+/// Rasterizes one triangle into a lattice's fragments (top-left fill rule). kCount: also counts
+/// each point's depth tests into `tests` (the `tests` term, SPEC §1.5).
+template <bool kCount>
 void rasterize_triangle(bool persp, const RasterTriangle& r, const std::array<Vec3, 3>* clip_bary,
-                        const Lattice& lat, Fragment* frags) {
+                        const Lattice& lat, Fragment* frags, uint32_t* tests) {
     int64_t x[3] = {r.x[0], r.x[1], r.x[2]}, y[3] = {r.y[0], r.y[1], r.y[2]};
     int order[3] = {0, 1, 2};
     // Edge functions are positive inside for a counter-clockwise triangle on screen (y down).
@@ -232,6 +234,7 @@ void rasterize_triangle(bool persp, const RasterTriangle& r, const std::array<Ve
                     depth = l0 * d[0] + l1 * d[1] + l2 * d[2];
                 }
                 Fragment& frag = row[px];
+                if constexpr (kCount) ++tests[static_cast<size_t>(py) * lat.w + px];
                 if (depth < frag.depth) {
                     // Barycentrics of the set-up vertices → of the original triangle.
                     float o[3] = {0, 0, 0};
@@ -293,14 +296,20 @@ uint64_t Rasterizer::triangles() const {
     return n;
 }
 
-void Rasterizer::rasterize(size_t t, const Lattice& lat, Fragment* frags) const {
-    std::fill(frags, frags + static_cast<size_t>(lat.w) * lat.h, kEmptyFragment);
+void Rasterizer::rasterize(size_t t, const Lattice& lat, Fragment* frags, uint32_t* tests) const {
+    const size_t points = static_cast<size_t>(lat.w) * lat.h;
+    std::fill(frags, frags + points, kEmptyFragment);
+    if (tests) std::fill(tests, tests + points, 0u);
     // Chunks in order, so that ties resolve the same way always.
     for (const ChunkBins& c : chunks_) {
         for (uint32_t index : c.tile_lists[t]) {
             const RasterTriangle& r = c.triangles[index];
-            rasterize_triangle(perspective_, r, r.clip >= 0 ? &c.clip_bary[r.clip] : nullptr, lat,
-                               frags);
+            const std::array<Vec3, 3>* clip_bary = r.clip >= 0 ? &c.clip_bary[r.clip] : nullptr;
+            if (tests) {
+                rasterize_triangle<true>(perspective_, r, clip_bary, lat, frags, tests);
+            } else {
+                rasterize_triangle<false>(perspective_, r, clip_bary, lat, frags, nullptr);
+            }
         }
     }
 }

@@ -91,7 +91,8 @@ class Rasterizer {
     /// Rasterizes the triangles binned to tile `t` at the points of `lat` into `frags`
     /// (lat.w × lat.h): fixed-point edge functions, top-left rule (watertight, no point twice),
     /// nearest depth kept, ties to the earlier triangle. Points nothing covers get kNoTriangle.
-    void rasterize(size_t t, const Lattice& lat, Fragment* frags) const;
+    /// When `tests` is set (lat.w × lat.h), it receives each point's number of depth tests.
+    void rasterize(size_t t, const Lattice& lat, Fragment* frags, uint32_t* tests = nullptr) const;
 
   private:
     bool perspective_;

@@ -13,10 +13,19 @@ void render_ray_traced(const BuiltScene& scene, const Settings& settings,
     const RayTracer tracer(scene, settings, settings.render.pipeline == Pipeline::raytrace);
     const int w = settings.image.width, h = settings.image.height;
     std::vector<TraceCounters> counters;
-    const SamplerCounts counts = sample_image(
-        settings.render.antialias, w, h, control,
-        [&tracer](float x, float y, TraceCounters& c) { return tracer.sample(x, y, c); }, out,
-        counters, control.aa_mask);
+    SamplerCounts counts;
+    if (control.terms && control.terms->any()) {  // the colour and its terms (SPEC §1.5)
+        TermOut term_out{out, *control.terms};
+        counts = sample_image(
+            settings.render.antialias, w, h, control,
+            [&tracer](float x, float y, TraceCounters& c) { return tracer.sample_terms(x, y, c); },
+            term_out, counters, control.aa_mask);
+    } else {
+        counts = sample_image(
+            settings.render.antialias, w, h, control,
+            [&tracer](float x, float y, TraceCounters& c) { return tracer.sample(x, y, c); }, out,
+            counters, control.aa_mask);
+    }
     for (const TraceCounters& c : counters) {
         stats.rays_primary += c.primary;
         stats.rays_shadow += c.shadow;

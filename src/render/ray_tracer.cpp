@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <span>
+#include <vector>
 
 #include "geometry/ray_sphere.h"
 
@@ -19,6 +21,13 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 bool hit_light_sphere(const Ray& ray, const Vec3& c, float r, float t_max, float& t) {
     float t0, t1;
     return world_sphere_roots(c, r, ray, t0, t1) && nearest_root(t0, t1, 0.0f, t_max, t);
+}
+
+/// Per-thread light terms of a primary hit whose terms are asked for (no allocation per sample).
+std::span<LightTerm> light_scratch(size_t lights) {
+    thread_local std::vector<LightTerm> scratch;
+    scratch.assign(lights, LightTerm{});
+    return scratch;
 }
 
 }  // namespace
@@ -64,9 +73,9 @@ Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& 
                 : trace_impl<false>(ray, depth, counters, distance, nullptr);
 }
 
-template <bool kRecord>
+template <bool kRecord, bool kTerms>
 Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, float& distance,
-                          RayTree* tree_in) const {
+                          RayTree* tree_in, TermSample* terms_in) const {
     RayTree* const tree = kRecord ? tree_in : nullptr;  // a constant null when not recording
     const Settings& desc = settings_;
     // Ray-tree recording (viewer only): this ray's node, filled as the numbers are computed.
@@ -82,6 +91,8 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, fl
         if (tree) tree->nodes[self].color = c;
         return c;
     };
+    // The primary ray's terms (SPEC §1.5), filled as the numbers are computed.
+    TermSample* const out = kTerms ? terms_in : nullptr;
     // Nearest hit among objects and visible lights.
     float t_max = kInfinity;
     Hit hit;
@@ -95,8 +106,16 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, fl
         n.hit = light >= 0 ? RayHit::light : hit_object ? RayHit::object : RayHit::background;
         n.light = light;
     }
-    if (light >= 0) return record(clamp01(desc.lights[light].intensity));
-    if (!hit_object) return record(desc.image.background);
+    if constexpr (kTerms) out->depth = t_max;  // +inf on a miss
+    if (light >= 0) {
+        const Rgb emitted = clamp01(desc.lights[light].intensity);
+        if constexpr (kTerms) out->emitted = emitted;
+        return record(emitted);
+    }
+    if (!hit_object) {
+        if constexpr (kTerms) out->emitted = desc.image.background;
+        return record(desc.image.background);
+    }
 
     // The local model at P, with S = −ray.direction and shadow rays (raytrace).
     const Shape& shape = scene_.shapes[hit.shape];
@@ -106,6 +125,10 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, fl
     const ShadingPoint p{sp.P, sp.N, sp.Ng, -D, &m};
     ShadeTerms terms;
     ShadeTerms* terms_out = nullptr;
+    if constexpr (kTerms) {
+        terms.light = light_scratch(desc.lights.size());
+        terms_out = &terms;
+    }
     if (tree) {
         RayTreeNode& n = tree->nodes[self];
         n.object = static_cast<int>(hit.shape);
@@ -136,6 +159,15 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, fl
         n.flipped = terms.flipped;
         n.local = c;
     }
+    if constexpr (kTerms) {
+        out->ambient = terms.ambient;
+        for (const LightTerm& t : terms.light) {
+            out->diffuse += t.diffuse;
+            out->specular += t.specular;
+            out->shadow += t.unshadowed * (1.0f - t.visibility);  // (1 − vis_j)·(…with vis_j = 1)
+        }
+        out->normal = terms.flipped ? -sp.N : sp.N;
+    }
     if (depth >= max_depth_ || (m.reflection <= 0 && m.transparency <= 0)) return record(c);
 
     // The normal facing the incoming ray (two-sided), and whether the ray enters the object.
@@ -148,7 +180,7 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, fl
         ++count;
         float d;
         if (tree) child = static_cast<int>(tree->nodes.size());
-        const Rgb s = trace_impl<kRecord>(r, depth + 1, counters, d, tree);
+        const Rgb s = trace_impl<kRecord, false>(r, depth + 1, counters, d, tree);
         if (tree) {
             tree->nodes[child].returned = s;
             tree->nodes[child].A = !tree_attenuation_ ? 1.0f
@@ -173,6 +205,7 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, fl
         const Rgb contribution =
             secondary(spawn_ray(sp.P, sp.Ng, R), counters.reflection) * m.reflection;
         c += contribution;
+        if constexpr (kTerms) out->reflected = contribution;
         if (tree) record_child(RayKind::reflection, m.reflection, contribution);
     }
     if (m.transparency > 0) {
@@ -184,6 +217,7 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, fl
         const Rgb contribution =
             secondary(spawn_ray(sp.P, sp.Ng, dir), counters.refraction) * m.transparency;
         c += contribution;
+        if constexpr (kTerms) out->refracted = contribution;
         if (tree) {
             record_child(RayKind::refraction, m.transparency, contribution);
             tree->nodes[self].total_internal_reflection = tir;
@@ -208,6 +242,26 @@ Rgb RayTracer::sample(float px, float py, TraceCounters& counters) const {
                                                    std::chrono::steady_clock::now() - start)
                                                    .count());
     return c;
+}
+
+TermSample RayTracer::sample_terms(float px, float py, TraceCounters& counters) const {
+    // Timed like sample(): the same samples are timed whichever is called.
+    TermSample s;
+    const uint64_t tests_before = counters.tests.primitive;
+    float distance;
+    const bool timed = counters.primary++ % kTimedSampleEvery == 0;
+    const auto start = std::chrono::steady_clock::now();
+    counters.tests.timing = timed;
+    s.colour = trace_impl<false, true>(camera_.ray(px, py), 0, counters, distance, nullptr, &s);
+    counters.tests.timing = false;
+    if (timed) {
+        counters.timed_ns +=
+            static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                      std::chrono::steady_clock::now() - start)
+                                      .count());
+    }
+    s.tests = static_cast<float>(counters.tests.primitive - tests_before);
+    return s;
 }
 
 }  // namespace luz

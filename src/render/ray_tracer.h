@@ -8,6 +8,7 @@
 #include "geometry/scene.h"
 #include "geometry/scene_query.h"
 #include "image/image.h"
+#include "render/aov.h"
 #include "render/ray_tree.h"
 #include "render/render.h"
 #include "render/stats.h"
@@ -62,14 +63,19 @@ class RayTracer {
     /// call (counted in `counters`) is timed (TraceCounters::timed_ns, tests.query_ns).
     Rgb sample(float px, float py, TraceCounters& counters) const;
 
+    /// The same sample with its terms (SPEC §1.5), taken from the numbers trace() and shade()
+    /// compute at the primary hit; its colour has the bits sample() gives.
+    TermSample sample_terms(float px, float py, TraceCounters& counters) const;
+
     const Camera& camera() const { return camera_; }
 
   private:
     /// trace() with ray-tree recording (kRecord, `tree` set) or without: the renders' copy
-    /// carries none of the recording's branches and state.
-    template <bool kRecord>
+    /// carries none of the recording's branches and state. kTerms: also fills `terms` with this
+    /// ray's terms (a primary ray; its children are traced without).
+    template <bool kRecord, bool kTerms = false>
     Rgb trace_impl(const Ray& ray, int depth, TraceCounters& counters, float& distance,
-                   RayTree* tree_in) const;
+                   RayTree* tree_in, TermSample* terms = nullptr) const;
 
     /// The nearest visible light sphere along ray within (0, t_max), or −1.
     int nearest_light(const Ray& ray, float& t_max, TraceCounters& counters) const;

@@ -11,6 +11,7 @@
 namespace luz {
 
 struct AaMask;
+struct TermPlanes;
 
 /// How a render is run: threads, progress reports and cancellation.
 struct RenderControl {
@@ -22,6 +23,8 @@ struct RenderControl {
     /// When set, receives which pixels adaptive antialiasing refined and how deeply
     /// (render/sampler.h; no pixel is refined in the other modes).
     AaMask* aa_mask = nullptr;
+    /// When set, receives the per-term images it holds (SPEC §1.5), each the image's size.
+    const TermPlanes* terms = nullptr;
 };
 
 /// Renders `scene` with `settings` (image, camera, pipeline, lights, materials …); fills

@@ -11,51 +11,55 @@ namespace {
 float centre(int i) { return static_cast<float>(i) + 0.5f; }
 
 /// Per-thread working memory of the separable tent filter.
+template <class S>
 struct TentScratch {
     std::vector<float> xs, ys;  ///< sample positions of the region's columns and rows
-    std::vector<Rgb> rows;      ///< horizontally filtered sample rows, one per tile column
+    std::vector<S> rows;        ///< horizontally filtered sample rows, one per tile column
 };
 
-TentScratch& tent_scratch() {
-    thread_local TentScratch s;
+template <class S>
+TentScratch<S>& tent_scratch() {
+    thread_local TentScratch<S> s;
     return s;
 }
 
-void box_filter(const GridSpec& g, const PixelRect& tile, const PixelRect& region,
-                const Rgb* samples, Image& out) {
+template <class S, class Out>
+void box_filter(const GridSpec& g, const PixelRect& tile, const PixelRect& region, const S* samples,
+                Out& out) {
     const int s = g.s;
     const size_t stride = static_cast<size_t>(region.width()) * s;
     const float inv = 1.0f / static_cast<float>(s * s);
     for (int j = tile.y0; j < tile.y1; ++j) {
         for (int i = tile.x0; i < tile.x1; ++i) {
-            Rgb sum{0.0f};
+            S sum{};
             for (int b = 0; b < s; ++b) {
-                const Rgb* row = samples + static_cast<size_t>((j - region.y0) * s + b) * stride +
-                                 static_cast<size_t>(i - region.x0) * s;
+                const S* row = samples + static_cast<size_t>((j - region.y0) * s + b) * stride +
+                               static_cast<size_t>(i - region.x0) * s;
                 for (int a = 0; a < s; ++a) sum += row[a];
             }
-            out.at(i, j) = sum * inv;
+            put(out, i, j, sum * inv);
         }
     }
 }
 
 /// Tent filter with jittered samples: every sample of the 3×3 pixels, weighted directly.
+template <class S, class Out>
 void tent_filter_direct(const GridSpec& g, const PixelRect& tile, const PixelRect& region,
-                        const Rgb* samples, Image& out) {
+                        const S* samples, Out& out) {
     const int s = g.s;
     const size_t stride = static_cast<size_t>(region.width()) * s;
     for (int j = tile.y0; j < tile.y1; ++j) {
         for (int i = tile.x0; i < tile.x1; ++i) {
             const float cx = centre(i), cy = centre(j);
-            Rgb sum{0.0f};
+            S sum{};
             float weights = 0;
             for (int nj = std::max(j - 1, region.y0); nj <= std::min(j + 1, region.y1 - 1); ++nj) {
                 for (int ni = std::max(i - 1, region.x0); ni <= std::min(i + 1, region.x1 - 1);
                      ++ni) {
                     for (int b = 0; b < s; ++b) {
-                        const Rgb* row = samples +
-                                         static_cast<size_t>((nj - region.y0) * s + b) * stride +
-                                         static_cast<size_t>(ni - region.x0) * s;
+                        const S* row = samples +
+                                       static_cast<size_t>((nj - region.y0) * s + b) * stride +
+                                       static_cast<size_t>(ni - region.x0) * s;
                         for (int a = 0; a < s; ++a) {
                             float x, y;
                             g.position(ni, nj, a, b, x, y);
@@ -68,18 +72,19 @@ void tent_filter_direct(const GridSpec& g, const PixelRect& tile, const PixelRec
                     }
                 }
             }
-            out.at(i, j) = sum * (1.0f / weights);
+            put(out, i, j, sum * (1.0f / weights));
         }
     }
 }
 
 /// Tent filter on the regular grid: the weight is a product of an x and a y factor and every
 /// sample of a column shares its x, so rows are filtered horizontally, then vertically.
+template <class S, class Out>
 void tent_filter_separable(const GridSpec& g, const PixelRect& tile, const PixelRect& region,
-                           const Rgb* samples, Image& out) {
+                           const S* samples, Out& out) {
     const int s = g.s;
     const int cols = region.width() * s, rows = region.height() * s, tw = tile.width();
-    TentScratch& t = tent_scratch();
+    TentScratch<S>& t = tent_scratch<S>();
     t.xs.resize(cols);
     t.ys.resize(rows);
     float unused;
@@ -92,12 +97,12 @@ void tent_filter_separable(const GridSpec& g, const PixelRect& tile, const Pixel
     const int r1 = (std::min(tile.y1 + 1, region.y1) - region.y0) * s;
     t.rows.resize(static_cast<size_t>(r1 - r0) * tw);
     for (int r = r0; r < r1; ++r) {
-        const Rgb* row = samples + static_cast<size_t>(r) * cols;
+        const S* row = samples + static_cast<size_t>(r) * cols;
         for (int i = tile.x0; i < tile.x1; ++i) {
             const float cx = centre(i);
             const int c0 = (std::max(i - 1, region.x0) - region.x0) * s;
             const int c1 = (std::min(i + 2, region.x1) - region.x0) * s;
-            Rgb sum{0.0f};
+            S sum{};
             for (int c = c0; c < c1; ++c) {
                 const float w = tent1(t.xs[c] - cx);
                 if (w > 0) sum += row[c] * w;
@@ -115,7 +120,7 @@ void tent_filter_separable(const GridSpec& g, const PixelRect& tile, const Pixel
             const int c1 = (std::min(i + 2, region.x1) - region.x0) * s;
             float wx_sum = 0, wy_sum = 0;
             for (int c = c0; c < c1; ++c) wx_sum += tent1(t.xs[c] - cx);
-            Rgb sum{0.0f};
+            S sum{};
             for (int r = ra; r < rb; ++r) {
                 const float w = tent1(t.ys[r] - cy);
                 if (w > 0) {
@@ -123,7 +128,7 @@ void tent_filter_separable(const GridSpec& g, const PixelRect& tile, const Pixel
                     wy_sum += w;
                 }
             }
-            out.at(i, j) = sum * (1.0f / (wx_sum * wy_sum));
+            put(out, i, j, sum * (1.0f / (wx_sum * wy_sum)));
         }
     }
 }
@@ -154,8 +159,9 @@ bool GridSpec::needed(const PixelRect& tile, float x, float y) const {
     return tent1(x - centre(i)) > 0 && tent1(y - centre(j)) > 0;
 }
 
+template <class S, class Out>
 void filter_tile(const GridSpec& g, const PixelRect& tile, const PixelRect& region,
-                 const Rgb* samples, Image& out) {
+                 const S* samples, Out& out) {
     if (g.filter == AaFilter::box) {
         box_filter(g, tile, region, samples, out);
     } else if (g.jitter) {
@@ -174,7 +180,13 @@ AdaptiveSpec AdaptiveSpec::from(const AntialiasDesc& aa, int width, int height) 
     return a;
 }
 
-uint32_t AdaptiveCache::next_generation() {
+template void filter_tile<Rgb, Image>(const GridSpec&, const PixelRect&, const PixelRect&,
+                                      const Rgb*, Image&);
+template void filter_tile<TermSample, TermOut>(const GridSpec&, const PixelRect&, const PixelRect&,
+                                               const TermSample*, TermOut&);
+
+template <class Sample>
+uint32_t AdaptiveCache<Sample>::next_generation() {
     if (generation_ == std::numeric_limits<uint32_t>::max()) {  // wrapped: forget everything
         for (auto* v : {&rows_, &cols_, &inner_})
             for (Slot& s : *v) s.stamp = 0;
@@ -183,7 +195,8 @@ uint32_t AdaptiveCache::next_generation() {
     return ++generation_;
 }
 
-void AdaptiveCache::begin_tile(const PixelRect& tile, int S) {
+template <class Sample>
+void AdaptiveCache<Sample>::begin_tile(const PixelRect& tile, int S) {
     tile_ = tile;
     S_ = S;
     // Horizontal pixel edges: tile height + 1 lines of width·S + 1 points; vertical alike.
@@ -197,13 +210,15 @@ void AdaptiveCache::begin_tile(const PixelRect& tile, int S) {
     tile_gen_ = next_generation();
 }
 
-void AdaptiveCache::begin_pixel(int i, int j) {
+template <class Sample>
+void AdaptiveCache<Sample>::begin_pixel(int i, int j) {
     li_ = i - tile_.x0;
     lj_ = j - tile_.y0;
     pixel_gen_ = next_generation();
 }
 
-AdaptiveCache::Slot& AdaptiveCache::slot(int k, int l) {
+template <class Sample>
+typename AdaptiveCache<Sample>::Slot& AdaptiveCache<Sample>::slot(int k, int l) {
     if (l == 0 || l == S_) {  // on a horizontal edge: line lj (top) or lj + 1 (bottom)
         const size_t row_points = static_cast<size_t>(tile_.width()) * S_ + 1;
         return rows_[(lj_ + (l == S_)) * row_points + static_cast<size_t>(li_) * S_ + k];
@@ -215,15 +230,14 @@ AdaptiveCache::Slot& AdaptiveCache::slot(int k, int l) {
     return inner_[static_cast<size_t>(l) * (S_ + 1) + k];
 }
 
-AdaptiveCache& AdaptiveCache::for_this_thread() {
+template <class Sample>
+AdaptiveCache<Sample>& AdaptiveCache<Sample>::for_this_thread() {
     thread_local AdaptiveCache cache;
     return cache;
 }
 
-std::vector<Rgb>& grid_scratch_for_this_thread() {
-    thread_local std::vector<Rgb> buf;
-    return buf;
-}
+template class AdaptiveCache<Rgb>;
+template class AdaptiveCache<TermSample>;
 
 Image aa_mask_image(const AaMask& mask, const Image& render) {
     static const Rgb kLevel[6] = {{0.15f, 0.35f, 1.0f}, {0.0f, 0.85f, 0.95f}, {0.2f, 0.9f, 0.2f},

@@ -8,9 +8,12 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "image/image.h"
+#include "render/aov.h"
 #include "render/parallel.h"
 #include "render/render.h"
 #include "scene/scene_desc.h"
@@ -102,11 +105,14 @@ struct GridSpec {
 };
 
 /// Combines the samples of the pixels of `region` into the pixels of `tile` of `out` with the
-/// grid's filter. `samples` holds (region.width()·s) × (region.height()·s) colours, row-major:
+/// grid's filter. `samples` holds (region.width()·s) × (region.height()·s) samples, row-major:
 /// sample (a, b) of pixel (i, j) at column (i − region.x0)·s + a, row (j − region.y0)·s + b.
-/// Samples that are not needed() are never read with a non-zero weight.
+/// Samples that are not needed() are never read with a non-zero weight. A sample is an Rgb
+/// colour (Out: Image) or a colour with its terms (TermSample, Out: TermOut), filtered with the
+/// same weights (sampler.cpp instantiates both).
+template <class S, class Out>
 void filter_tile(const GridSpec& g, const PixelRect& tile, const PixelRect& region,
-                 const Rgb* samples, Image& out);
+                 const S* samples, Out& out);
 
 /// Adaptive sampling (SPEC §1.2): corner samples shared by neighbouring pixels, a pixel whose
 /// corners differ by more than `threshold` split into 4, recursively, up to `max_level` times.
@@ -135,11 +141,13 @@ inline float corner_difference(const Rgb& a, const Rgb& b, const Rgb& c, const R
 
 /// The sub-corners a tile's refined pixels have sampled, so that each is sampled once: those
 /// on pixel edges are shared with the neighbouring pixel of the same tile; those inside a pixel
-/// belong to it. Entries are stamped with a generation instead of being cleared. One per thread.
+/// belong to it. Entries are stamped with a generation instead of being cleared. One per thread
+/// and sample type (Rgb, TermSample).
+template <class Sample>
 class AdaptiveCache {
   public:
     struct Slot {
-        Rgb colour;
+        Sample colour;
         uint32_t stamp = 0;
     };
 
@@ -155,7 +163,7 @@ class AdaptiveCache {
         return s.stamp == (edge ? tile_gen_ : pixel_gen_);
     }
     /// Marks `s` as sampled.
-    void fill(Slot& s, int k, int l, const Rgb& c) {
+    void fill(Slot& s, int k, int l, const Sample& c) {
         const bool edge = k == 0 || k == S_ || l == 0 || l == S_;
         s.colour = c;
         s.stamp = edge ? tile_gen_ : pixel_gen_;
@@ -176,16 +184,16 @@ class AdaptiveCache {
 namespace detail {
 
 /// One pixel's recursive refinement over its sub-corner lattice.
-template <class Fine>
+template <class Sample, class Fine>
 struct Refiner {
     const AdaptiveSpec& spec;
-    AdaptiveCache& cache;
+    AdaptiveCache<Sample>& cache;
     Fine& fine;
     SamplerCounts& counts;
     int i, j, S, deepest = 0;
 
-    Rgb at(int k, int l) {
-        AdaptiveCache::Slot& s = cache.slot(k, l);
+    Sample at(int k, int l) {
+        typename AdaptiveCache<Sample>::Slot& s = cache.slot(k, l);
         if (!cache.valid(s, k, l)) {
             cache.fill(s, k, l, fine.colour(i, j, k, l));
             ++counts.samples;
@@ -195,17 +203,19 @@ struct Refiner {
 
     /// The value of the (sub-)pixel [k, k+size] × [l, l+size] with corners c00 … c11:
     /// the mean of its corners, or split into 4 and the mean of its parts.
-    Rgb value(int k, int l, int size, int level, const Rgb& c00, const Rgb& c10, const Rgb& c01,
-              const Rgb& c11) {
-        if (level < spec.max_level && corner_difference(c00, c10, c01, c11) > spec.threshold) {
+    Sample value(int k, int l, int size, int level, const Sample& c00, const Sample& c10,
+                 const Sample& c01, const Sample& c11) {
+        if (level < spec.max_level &&
+            corner_difference(colour_of(c00), colour_of(c10), colour_of(c01), colour_of(c11)) >
+                spec.threshold) {
             deepest = std::max(deepest, level + 1);
             const int h = size / 2;
-            const Rgb cm0 = at(k + h, l), c0m = at(k, l + h), cmm = at(k + h, l + h);
-            const Rgb c1m = at(k + size, l + h), cm1 = at(k + h, l + size);
-            const Rgb sum = value(k, l, h, level + 1, c00, cm0, c0m, cmm) +
-                            value(k + h, l, h, level + 1, cm0, c10, cmm, c1m) +
-                            value(k, l + h, h, level + 1, c0m, cmm, c01, cm1) +
-                            value(k + h, l + h, h, level + 1, cmm, c1m, cm1, c11);
+            const Sample cm0 = at(k + h, l), c0m = at(k, l + h), cmm = at(k + h, l + h);
+            const Sample c1m = at(k + size, l + h), cm1 = at(k + h, l + size);
+            const Sample sum = value(k, l, h, level + 1, c00, cm0, c0m, cmm) +
+                               value(k + h, l, h, level + 1, cm0, c10, cmm, c1m) +
+                               value(k, l + h, h, level + 1, c0m, cmm, c01, cm1) +
+                               value(k + h, l + h, h, level + 1, cmm, c1m, cm1, c11);
             return sum * 0.25f;
         }
         return (c00 + c10 + c01 + c11) * 0.25f;
@@ -214,35 +224,38 @@ struct Refiner {
 
 }  // namespace detail
 
-/// Adaptive antialiasing of the pixels of `tile`. `corners` holds the (W+1)×(H+1) colours at
-/// the pixel corners (x, y integers), row-major. `fine` provides the rest:
+/// Adaptive antialiasing of the pixels of `tile`. `corners` holds the (W+1)×(H+1) samples at
+/// the pixel corners (x, y integers), row-major (Rgb colours, or TermSample). `fine` provides
+/// the rest:
 /// `fine.begin_pixel(i, j)` once before the first sub-corner of a refined pixel and
 /// `fine.colour(i, j, k, l)`, the colour at (i + k/S, j + l/S). Writes the pixels into `out`,
 /// their levels into `mask` (if any) and counts sub-corner samples and refined pixels.
-template <class Fine>
-void refine_tile(const AdaptiveSpec& spec, const PixelRect& tile, const Rgb* corners, Fine& fine,
-                 Image& out, AaMask* mask, SamplerCounts& counts) {
+template <class Sample, class Fine, class Out>
+void refine_tile(const AdaptiveSpec& spec, const PixelRect& tile, const Sample* corners, Fine& fine,
+                 Out& out, AaMask* mask, SamplerCounts& counts) {
     const int S = spec.lattice();
     const size_t row = static_cast<size_t>(spec.width) + 1;
-    AdaptiveCache& cache = AdaptiveCache::for_this_thread();
+    AdaptiveCache<Sample>& cache = AdaptiveCache<Sample>::for_this_thread();
     cache.begin_tile(tile, S);
     for (int j = tile.y0; j < tile.y1; ++j) {
         for (int i = tile.x0; i < tile.x1; ++i) {
-            const Rgb* c = corners + static_cast<size_t>(j) * row + i;
-            const Rgb &c00 = c[0], &c10 = c[1], &c01 = c[row], &c11 = c[row + 1];
-            Rgb value;
+            const Sample* c = corners + static_cast<size_t>(j) * row + i;
+            const Sample &c00 = c[0], &c10 = c[1], &c01 = c[row], &c11 = c[row + 1];
+            Sample value;
             int deepest = 0;
-            if (spec.max_level > 0 && corner_difference(c00, c10, c01, c11) > spec.threshold) {
+            if (spec.max_level > 0 &&
+                corner_difference(colour_of(c00), colour_of(c10), colour_of(c01), colour_of(c11)) >
+                    spec.threshold) {
                 cache.begin_pixel(i, j);
                 fine.begin_pixel(i, j);
-                detail::Refiner<Fine> r{spec, cache, fine, counts, i, j, S};
+                detail::Refiner<Sample, Fine> r{spec, cache, fine, counts, i, j, S};
                 value = r.value(0, 0, S, 0, c00, c10, c01, c11);
                 deepest = r.deepest;
                 ++counts.pixels_refined;
             } else {
                 value = (c00 + c10 + c01 + c11) * 0.25f;
             }
-            out.at(i, j) = value;
+            put(out, i, j, value);
             if (mask) mask->level[static_cast<size_t>(j) * spec.width + i] = uint8_t(deepest);
         }
     }
@@ -255,18 +268,24 @@ inline PixelRect corner_rect(const PixelRect& tile, int width, int height) {
             tile.y1 + (tile.y1 == height ? 1 : 0)};
 }
 
-/// Per-thread working memory of grid sampling: one tile's samples.
-std::vector<Rgb>& grid_scratch_for_this_thread();
+/// Per-thread working memory of grid sampling: one tile's samples (Rgb or TermSample).
+template <class S>
+std::vector<S>& grid_scratch_for_this_thread() {
+    thread_local std::vector<S> buf;
+    return buf;
+}
 
-/// Renders an image with the antialiasing `aa`: `colour(x, y, counters)` gives the colour at
-/// pixel-space point (x, y) and may count into `counters` (one Counters per work item, in
+/// Renders an image with the antialiasing `aa`: `colour(x, y, counters)` gives the sample at
+/// pixel-space point (x, y) — an Rgb colour, or a TermSample (its colour and terms), put into
+/// `out` (an Image, or a TermOut) — and may count into `counters` (one Counters per work item, in
 /// `counters`, to be summed by the caller; each item counts into a local copy first, so that
 /// threads never write to one cache line). Square tiles are rendered in parallel; the result
 /// does not depend on the thread count. Fills `mask` (if any); returns the counts.
-template <class Counters, class Colour>
+template <class Counters, class Colour, class Out>
 SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
-                           const RenderControl& control, Colour&& colour, Image& out,
+                           const RenderControl& control, Colour&& colour, Out& out,
                            std::vector<Counters>& counters, AaMask* mask) {
+    using S = std::decay_t<decltype(colour(0.0f, 0.0f, std::declval<Counters&>()))>;
     const int T = kSamplerTile;
     const int tiles_x = (width + T - 1) / T, tiles_y = (height + T - 1) / T;
     const size_t tile_count = static_cast<size_t>(tiles_x) * tiles_y;
@@ -298,7 +317,7 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                 const PixelRect r = tile_of(t);
                 Counters c{};
                 for (int y = r.y0; y < r.y1; ++y)
-                    for (int x = r.x0; x < r.x1; ++x) out.at(x, y) = colour(x + 0.5f, y + 0.5f, c);
+                    for (int x = r.x0; x < r.x1; ++x) put(out, x, y, colour(x + 0.5f, y + 0.5f, c));
                 counters[t] = c;
                 counts[t].samples = static_cast<uint64_t>(r.width()) * r.height();
                 report();
@@ -310,7 +329,7 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                 if (cancelled()) return;
                 const PixelRect tile = tile_of(t), region = g.region(tile);
                 const int s = g.s, stride = region.width() * s;
-                std::vector<Rgb>& buf = grid_scratch_for_this_thread();
+                std::vector<S>& buf = grid_scratch_for_this_thread<S>();
                 Counters c{};
                 buf.resize(static_cast<size_t>(stride) * region.height() * s);
                 for (int j = region.y0; j < region.y1; ++j) {
@@ -318,8 +337,8 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                         const bool inside =
                             i >= tile.x0 && i < tile.x1 && j >= tile.y0 && j < tile.y1;
                         for (int b = 0; b < s; ++b) {
-                            Rgb* dst = &buf[static_cast<size_t>((j - region.y0) * s + b) * stride +
-                                            (i - region.x0) * s];
+                            S* dst = &buf[static_cast<size_t>((j - region.y0) * s + b) * stride +
+                                          (i - region.x0) * s];
                             for (int a = 0; a < s; ++a) {
                                 float x, y;
                                 g.position(i, j, a, b, x, y);
@@ -327,7 +346,7 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                                     dst[a] = colour(x, y, c);
                                     ++counts[t].samples;
                                 } else {
-                                    dst[a] = Rgb{0.0f};
+                                    dst[a] = S{};
                                 }
                             }
                         }
@@ -341,7 +360,7 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
         }
         case AaMode::adaptive: {
             // Pass 1: one sample at every pixel corner, each computed once.
-            std::vector<Rgb> corners(static_cast<size_t>(width + 1) * (height + 1));
+            std::vector<S> corners(static_cast<size_t>(width + 1) * (height + 1));
             parallel_items(control.threads, tile_count, [&](size_t t) {
                 if (cancelled()) return;
                 const PixelRect r = corner_rect(tile_of(t), width, height);
@@ -365,7 +384,7 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                     Counters& c;
                     float inv_S;
                     void begin_pixel(int, int) {}
-                    Rgb colour(int i, int j, int k, int l) {
+                    S colour(int i, int j, int k, int l) {
                         return fn(static_cast<float>(i) + static_cast<float>(k) * inv_S,
                                   static_cast<float>(j) + static_cast<float>(l) * inv_S, c);
                     }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <type_traits>
 #include <vector>
 
 #include "geometry/plane_grid.h"
@@ -22,7 +23,7 @@ namespace {
 
 /// Shades a tile's fragments into the image.
 void shade_tile(const ZbufferFrame& f, int x0, int y0, int w, int h, const Fragment* frags,
-                Image& out, RenderStats& stats) {
+                const uint32_t*, Image& out, RenderStats& stats) {
     const Lighting lighting = lighting_of(f.settings);
     const Rgb background = f.settings.image.background;
     for (int j = 0; j < h; ++j) {
@@ -33,6 +34,80 @@ void shade_tile(const ZbufferFrame& f, int x0, int y0, int w, int h, const Fragm
                                                      : shade_fragment(f, lighting, frag[i], stats);
         }
     }
+}
+
+/// The same with the terms (SPEC §1.5), `tests` holding each pixel's depth tests.
+void shade_tile(const ZbufferFrame& f, int x0, int y0, int w, int h, const Fragment* frags,
+                const uint32_t* tests, TermOut& out, RenderStats& stats) {
+    const Lighting lighting = lighting_of(f.settings);
+    for (int j = 0; j < h; ++j) {
+        for (int i = 0; i < w; ++i) {
+            const size_t k = static_cast<size_t>(j) * w + i;
+            put(out, x0 + i, y0 + j, shade_fragment_terms(f, lighting, frags[k], tests[k], stats));
+        }
+    }
+}
+
+/// Step 3 of render_zbuffer(): every tile rasterized and shaded into `out` (an Image, or a
+/// TermOut for the terms), with the frame's antialiasing.
+template <class Out>
+void render_tiles(const ZbufferFrame& f, const RenderControl& control, const GridSpec& grid,
+                  Out& out, RenderStats& stats) {
+    using S = SampleFor<Out>;
+    constexpr bool kTerms = std::is_same_v<S, TermSample>;
+    const Rasterizer& raster = f.raster;
+    const ImageDesc& img = f.settings.image;
+    const AntialiasDesc& aa = f.settings.render.antialias;
+    const size_t tile_count = raster.tile_count();
+    const size_t items = aa.mode == AaMode::adaptive ? 2 * tile_count : tile_count;
+    std::vector<RenderStats> tile_stats(items);
+    std::atomic<size_t> tiles_done{0};
+    const auto cancelled = [&] {
+        return control.cancel && control.cancel->load(std::memory_order_relaxed);
+    };
+    const auto report = [&] {
+        const size_t done = ++tiles_done;
+        if (control.progress) control.progress(static_cast<double>(done) / items);
+    };
+    switch (aa.mode) {
+        case AaMode::none:
+            parallel_items(control.threads, tile_count, [&](size_t t) {
+                if (cancelled()) return;
+                const PixelRect r = raster.tile_rect(t);
+                Fragment frags[kRasterTile * kRasterTile];
+                uint32_t tests[kTerms ? kRasterTile * kRasterTile : 1];
+                raster.rasterize(t, raster.centres(r), frags, kTerms ? tests : nullptr);
+                shade_tile(f, r.x0, r.y0, r.width(), r.height(), frags, tests, out, tile_stats[t]);
+                report();
+            });
+            break;
+        case AaMode::grid:
+            parallel_items(control.threads, tile_count, [&](size_t t) {
+                if (cancelled()) return;
+                grid_tile(f, t, grid, out, tile_stats[t]);
+                report();
+            });
+            break;
+        case AaMode::adaptive: {
+            // Pass 1: every pixel corner (x, y integers), rasterized and shaded once.
+            std::vector<S> corners(static_cast<size_t>(img.width + 1) * (img.height + 1));
+            parallel_items(control.threads, tile_count, [&](size_t t) {
+                if (cancelled()) return;
+                adaptive_corners_tile(f, t, corners.data(), tile_stats[t]);
+                report();
+            });
+            // Pass 2: pixels whose corners differ are refined on their finest lattice.
+            const AdaptiveSpec spec = AdaptiveSpec::from(aa, img.width, img.height);
+            parallel_items(control.threads, tile_count, [&](size_t t) {
+                if (cancelled()) return;
+                adaptive_refine_tile(f, t, spec, corners.data(), out, control.aa_mask,
+                                     tile_stats[tile_count + t]);
+                report();
+            });
+            break;
+        }
+    }
+    for (const RenderStats& s : tile_stats) stats.add_counters(s);
 }
 
 void append_triangles_from(size_t first_index, int32_t material, ZbufferGeometry& g) {
@@ -110,56 +185,13 @@ void render_zbuffer(const BuiltScene& scene, const Settings& settings,
     const ZbufferFrame f{scene,  settings, geometry,
                          raster, camera,   settings.camera.projection == Projection::perspective};
 
-    // 3. Rasterize and shade each tile.
-    const size_t tile_count = raster.tile_count();
-    const size_t items = aa.mode == AaMode::adaptive ? 2 * tile_count : tile_count;
-    std::vector<RenderStats> tile_stats(items);
-    std::atomic<size_t> tiles_done{0};
-    const auto cancelled = [&] {
-        return control.cancel && control.cancel->load(std::memory_order_relaxed);
-    };
-    const auto report = [&] {
-        const size_t done = ++tiles_done;
-        if (control.progress) control.progress(static_cast<double>(done) / items);
-    };
-    switch (aa.mode) {
-        case AaMode::none:
-            parallel_items(control.threads, tile_count, [&](size_t t) {
-                if (cancelled()) return;
-                const PixelRect r = raster.tile_rect(t);
-                Fragment frags[kRasterTile * kRasterTile];
-                raster.rasterize(t, raster.centres(r), frags);
-                shade_tile(f, r.x0, r.y0, r.width(), r.height(), frags, out, tile_stats[t]);
-                report();
-            });
-            break;
-        case AaMode::grid:
-            parallel_items(control.threads, tile_count, [&](size_t t) {
-                if (cancelled()) return;
-                grid_tile(f, t, grid, out, tile_stats[t]);
-                report();
-            });
-            break;
-        case AaMode::adaptive: {
-            // Pass 1: every pixel corner (x, y integers), rasterized and shaded once.
-            std::vector<Rgb> corners(static_cast<size_t>(img.width + 1) * (img.height + 1));
-            parallel_items(control.threads, tile_count, [&](size_t t) {
-                if (cancelled()) return;
-                adaptive_corners_tile(f, t, corners.data(), tile_stats[t]);
-                report();
-            });
-            // Pass 2: pixels whose corners differ are refined on their finest lattice.
-            const AdaptiveSpec spec = AdaptiveSpec::from(aa, img.width, img.height);
-            parallel_items(control.threads, tile_count, [&](size_t t) {
-                if (cancelled()) return;
-                adaptive_refine_tile(f, t, spec, corners.data(), out, control.aa_mask,
-                                     tile_stats[tile_count + t]);
-                report();
-            });
-            break;
-        }
+    // 3. Rasterize and shade each tile: the colours, or the colours and their terms.
+    if (control.terms && control.terms->any()) {
+        TermOut term_out{out, *control.terms};
+        render_tiles(f, control, grid, term_out, stats);
+    } else {
+        render_tiles(f, control, grid, out, stats);
     }
-    for (const RenderStats& s : tile_stats) stats.add_counters(s);
 }
 
 }  // namespace luz

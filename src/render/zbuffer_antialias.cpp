@@ -3,6 +3,7 @@
 #include "render/zbuffer_antialias.h"
 
 #include <algorithm>
+#include <type_traits>
 #include <vector>
 
 namespace luz {
@@ -13,6 +14,18 @@ namespace {
 std::vector<Fragment>& fragment_scratch() {
     thread_local std::vector<Fragment> frags;
     return frags;
+}
+
+/// Per-thread depth-test counts of a lattice, when terms are asked for (else null).
+template <class S>
+uint32_t* tests_scratch(size_t points) {
+    if constexpr (std::is_same_v<S, Rgb>) {
+        return nullptr;
+    } else {
+        thread_local std::vector<uint32_t> tests;
+        tests.resize(points);
+        return tests.data();
+    }
 }
 
 /// Grid antialiasing: fixed-point units per pixel, a multiple of 2s so that every sample
@@ -31,6 +44,7 @@ int grid_tile_size(int s) { return s <= 4 ? kRasterTile : (s <= 8 ? 32 : 16); }
 /// Adaptive antialiasing in the zbuffer: the sub-corners of a refined pixel. Its finest
 /// lattice (i + k/S, j + l/S) is rasterized once (coverage and depth); the refinement then
 /// shades only the points it asks for.
+template <class Sample>
 struct ZbufferFine {
     const ZbufferFrame& f;
     size_t tile;
@@ -38,13 +52,15 @@ struct ZbufferFine {
     RenderStats& stats;
     int S;
     Fragment* frags;  ///< (S+1)² fragments
+    uint32_t* tests;  ///< their depth tests (terms), or null
 
     void begin_pixel(int i, int j) {
         const int64_t unit = f.raster.layout().unit;
-        f.raster.rasterize(tile, Lattice{i * unit, j * unit, unit / S, S + 1, S + 1}, frags);
+        f.raster.rasterize(tile, Lattice{i * unit, j * unit, unit / S, S + 1, S + 1}, frags, tests);
     }
-    Rgb colour(int, int, int k, int l) {
-        return shade_fragment(f, lighting, frags[static_cast<size_t>(l) * (S + 1) + k], stats);
+    auto colour(int, int, int k, int l) {
+        const size_t p = static_cast<size_t>(l) * (S + 1) + k;
+        return fragment_sample<Sample>(f, lighting, frags[p], tests ? tests[p] : 0, stats);
     }
 };
 
@@ -64,7 +80,9 @@ RasterLayout antialias_layout(const AntialiasDesc& aa, const GridSpec& grid, int
     return layout;
 }
 
-void grid_tile(const ZbufferFrame& f, size_t t, const GridSpec& g, Image& out, RenderStats& stats) {
+template <class Out>
+void grid_tile(const ZbufferFrame& f, size_t t, const GridSpec& g, Out& out, RenderStats& stats) {
+    using S = SampleFor<Out>;
     const PixelRect tile = f.raster.tile_rect(t), region = g.region(tile);
     const int s = g.s;
     const int64_t unit = f.raster.layout().unit;
@@ -72,8 +90,9 @@ void grid_tile(const ZbufferFrame& f, size_t t, const GridSpec& g, Image& out, R
                       unit / s, region.width() * s, region.height() * s};
     std::vector<Fragment>& frags = fragment_scratch();
     frags.resize(static_cast<size_t>(lat.w) * lat.h);
-    f.raster.rasterize(t, lat, frags.data());
-    std::vector<Rgb>& colours = grid_scratch_for_this_thread();
+    uint32_t* tests = tests_scratch<S>(frags.size());
+    f.raster.rasterize(t, lat, frags.data(), tests);
+    std::vector<S>& colours = grid_scratch_for_this_thread<S>();
     colours.resize(frags.size());
     const Lighting lighting = lighting_of(f.settings);
     for (int b = 0; b < lat.h; ++b) {
@@ -84,39 +103,61 @@ void grid_tile(const ZbufferFrame& f, size_t t, const GridSpec& g, Image& out, R
             float x, y;
             g.position(i, j, a % s, b % s, x, y);
             const size_t k = static_cast<size_t>(b) * lat.w + a;
-            colours[k] = inside || g.needed(tile, x, y)
-                             ? shade_fragment(f, lighting, frags[k], stats)
-                             : Rgb{0.0f};
+            colours[k] =
+                inside || g.needed(tile, x, y)
+                    ? fragment_sample<S>(f, lighting, frags[k], tests ? tests[k] : 0, stats)
+                    : S{};
         }
     }
     filter_tile(g, tile, region, colours.data(), out);
 }
 
-void adaptive_corners_tile(const ZbufferFrame& f, size_t t, Rgb* corners, RenderStats& stats) {
+template <class S>
+void adaptive_corners_tile(const ZbufferFrame& f, size_t t, S* corners, RenderStats& stats) {
     const int W = f.raster.width(), H = f.raster.height();
     const PixelRect c = corner_rect(f.raster.tile_rect(t), W, H);
     const int64_t unit = f.raster.layout().unit;
     const Lattice lat{c.x0 * unit, c.y0 * unit, unit, c.width(), c.height()};
     std::vector<Fragment>& frags = fragment_scratch();
     frags.resize(static_cast<size_t>(lat.w) * lat.h);
-    f.raster.rasterize(t, lat, frags.data());
+    uint32_t* tests = tests_scratch<S>(frags.size());
+    f.raster.rasterize(t, lat, frags.data(), tests);
     const Lighting lighting = lighting_of(f.settings);
-    for (int y = 0; y < lat.h; ++y)
-        for (int x = 0; x < lat.w; ++x)
+    for (int y = 0; y < lat.h; ++y) {
+        for (int x = 0; x < lat.w; ++x) {
+            const size_t k = static_cast<size_t>(y) * lat.w + x;
             corners[static_cast<size_t>(c.y0 + y) * (W + 1) + c.x0 + x] =
-                shade_fragment(f, lighting, frags[static_cast<size_t>(y) * lat.w + x], stats);
+                fragment_sample<S>(f, lighting, frags[k], tests ? tests[k] : 0, stats);
+        }
+    }
 }
 
+template <class Out>
 void adaptive_refine_tile(const ZbufferFrame& f, size_t t, const AdaptiveSpec& spec,
-                          const Rgb* corners, Image& out, AaMask* mask, RenderStats& stats) {
+                          const SampleFor<Out>* corners, Out& out, AaMask* mask,
+                          RenderStats& stats) {
+    using Sample = SampleFor<Out>;
     const Lighting lighting = lighting_of(f.settings);
     const int S = spec.lattice();
     std::vector<Fragment>& frags = fragment_scratch();
     frags.resize(static_cast<size_t>(S + 1) * (S + 1));
-    ZbufferFine fine{f, t, lighting, stats, S, frags.data()};
+    ZbufferFine<Sample> fine{
+        f, t, lighting, stats, S, frags.data(), tests_scratch<Sample>(frags.size())};
     SamplerCounts counts;
     refine_tile(spec, f.raster.tile_rect(t), corners, fine, out, mask, counts);
     stats.pixels_refined += counts.pixels_refined;
 }
+
+// The two kinds of output: colours alone, and colours with their terms.
+template void grid_tile<Image>(const ZbufferFrame&, size_t, const GridSpec&, Image&, RenderStats&);
+template void grid_tile<TermOut>(const ZbufferFrame&, size_t, const GridSpec&, TermOut&,
+                                 RenderStats&);
+template void adaptive_corners_tile<Rgb>(const ZbufferFrame&, size_t, Rgb*, RenderStats&);
+template void adaptive_corners_tile<TermSample>(const ZbufferFrame&, size_t, TermSample*,
+                                                RenderStats&);
+template void adaptive_refine_tile<Image>(const ZbufferFrame&, size_t, const AdaptiveSpec&,
+                                          const Rgb*, Image&, AaMask*, RenderStats&);
+template void adaptive_refine_tile<TermOut>(const ZbufferFrame&, size_t, const AdaptiveSpec&,
+                                            const TermSample*, TermOut&, AaMask*, RenderStats&);
 
 }  // namespace luz

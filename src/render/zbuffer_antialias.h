@@ -16,15 +16,20 @@ RasterLayout antialias_layout(const AntialiasDesc& aa, const GridSpec& grid, int
 
 /// Grid antialiasing of tile `t`: the samples of its pixels (and of the ring the tent filter
 /// reaches) rasterized as one lattice, shaded, then filtered into `out`.
-void grid_tile(const ZbufferFrame& f, size_t t, const GridSpec& g, Image& out, RenderStats& stats);
+/// Out: an Image (colours) or a TermOut (colours and terms; zbuffer_antialias.cpp has both).
+template <class Out>
+void grid_tile(const ZbufferFrame& f, size_t t, const GridSpec& g, Out& out, RenderStats& stats);
 
 /// Adaptive pass 1 for tile `t`: the pixel corners of corner_rect(), rasterized and shaded
-/// into `corners` ((W+1) × (H+1), row-major).
-void adaptive_corners_tile(const ZbufferFrame& f, size_t t, Rgb* corners, RenderStats& stats);
+/// into `corners` ((W+1) × (H+1), row-major; Rgb or TermSample).
+template <class S>
+void adaptive_corners_tile(const ZbufferFrame& f, size_t t, S* corners, RenderStats& stats);
 
 /// Adaptive pass 2 for tile `t`: pixels whose corners differ are refined on their finest
 /// lattice (refine_tile()); writes the pixels into `out` and their levels into `mask`.
+template <class Out>
 void adaptive_refine_tile(const ZbufferFrame& f, size_t t, const AdaptiveSpec& spec,
-                          const Rgb* corners, Image& out, AaMask* mask, RenderStats& stats);
+                          const SampleFor<Out>* corners, Out& out, AaMask* mask,
+                          RenderStats& stats);
 
 }  // namespace luz

@@ -37,8 +37,9 @@ struct LightTerm {
     float distance = 0;    ///< d_j
     float cos_theta = 0;   ///< max(0, N·L_j)
     float cos_alpha = 0;   ///< max(0, R_j·S), 0 when N·L_j ≤ 0
-    Rgb diffuse;   ///< vis_j·Il_j·Kd·cosθ_j (lambert) or vis_j·Il_j/(d_j+K)·Kd·cosθ_j
-    Rgb specular;  ///< vis_j·Il_j/(d_j+K)·Ks·cosα_j^n (phong only)
+    Rgb diffuse;     ///< vis_j·Il_j·Kd·cosθ_j (lambert) or vis_j·Il_j/(d_j+K)·Kd·cosθ_j
+    Rgb specular;    ///< vis_j·Il_j/(d_j+K)·Ks·cosα_j^n (phong only)
+    Rgb unshadowed;  ///< diffuse + specular as they would be with vis_j = 1 (SPEC §1.5 shadow)
 };
 
 /// The terms that add up to shade()'s colour: ambient + Σ_j (diffuse_j + specular_j).
@@ -93,23 +94,36 @@ inline Rgb shade(const ShadingPoint& p, const Lighting& lighting, Visibility&& v
         if (N_dot_L > 0) {
             t.cos_theta = N_dot_L;  // cosθ_j = max(0, N·L_j)
             t.visibility = visibility(j, p.P, L, d);
-            if (t.visibility > 0) {
+            // Light j's diffuse and specular terms with visibility `vis`.
+            auto light_terms = [&](float vis, Rgb& diffuse, Rgb& specular) {
                 if (lighting.model == Model::lambert) {
                     // I += vis_j·Il_j·Kd·cosθ_j
-                    t.diffuse = light.intensity * c.kd * (t.visibility * t.cos_theta);
+                    diffuse = light.intensity * c.kd * (vis * t.cos_theta);
                 } else {
                     // I += vis_j·Il_j/(d_j+K)·(Kd·cosθ_j + Ks·cosα_j^n)
                     const Vec3 R = N * (2 * N_dot_L) - L;  // mirror direction of L_j
                     const float R_dot_S = dot(R, p.S);
                     t.cos_alpha = R_dot_S > 0 ? R_dot_S : 0.0f;
-                    const Rgb Il_att = light.intensity * (t.visibility / (d + lighting.K));
-                    t.diffuse = Il_att * c.kd * t.cos_theta;
+                    const Rgb Il_att = light.intensity * (vis / (d + lighting.K));
+                    diffuse = Il_att * c.kd * t.cos_theta;
                     // Ks·cosα^n (a surface without Ks needs no power)
                     if (max_component(m.ks) > 0) {
-                        t.specular = Il_att * m.ks * phong_power(t.cos_alpha, m.n);
+                        specular = Il_att * m.ks * phong_power(t.cos_alpha, m.n);
                     }
                 }
+            };
+            if (t.visibility > 0) {
+                light_terms(t.visibility, t.diffuse, t.specular);
                 I += t.diffuse + t.specular;
+            }
+            if (write_terms) {  // what the light would add unshadowed (the shadow term)
+                if (t.visibility == 1) {
+                    t.unshadowed = t.diffuse + t.specular;
+                } else {
+                    Rgb diffuse, specular;
+                    light_terms(1.0f, diffuse, specular);
+                    t.unshadowed = diffuse + specular;
+                }
             }
         }
         if (write_terms) terms->light[j] = t;

@@ -77,6 +77,26 @@ TEST_F(ViewTest, ScreenshotShowsTheRenderedImageAndThePanel) {
     EXPECT_GT(changes, 1000);
 }
 
+TEST_F(ViewTest, ShowsATermInsteadOfTheImage) {
+    // --aov depth: the window shows luz render's 8-bit picture of the depth term.
+    const RunResult v = view({"demo:primitives", "--width", "320", "--height", "240", "--aov",
+                              "depth", "--screenshot", "shot.png"});
+    ASSERT_EQ(v.status, 0) << v.err;
+    const RunResult r = run_luz({"render", "demo:primitives", "--width", "320", "--height", "240",
+                                 "-o", "ref.png", "--aov", "depth", "-q"},
+                                dir_);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const Image shot = read_image((dir_ / "shot.png").string());
+    const Image ref = read_image((dir_ / "ref.depth.png").string());
+    int different = 0;
+    for (int y = 0; y < ref.height; ++y)
+        for (int x = 0; x < ref.width; ++x) different += differs(shot, x, y, ref, x, y);
+    EXPECT_EQ(different, 0) << "the image region must be the depth picture, pixel for pixel";
+    const RunResult bad = view({"demo:primitives", "--aov", "depht", "--screenshot", "s.png"});
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_NE(bad.err.find("unknown term \"depht\""), std::string::npos) << bad.err;
+}
+
 TEST_F(ViewTest, SetChangesTheHighlight) {
     const std::vector<std::string> size = {"--width", "320", "--height", "240"};
     auto args = [&](std::vector<std::string> a) {

@@ -172,6 +172,17 @@ bool draw_scene_panel(SceneDesc& d, PanelState& state) {
     ImGui::Text("%.2f M %s/s   preview %.1f fps", f.seconds > 0 ? f.rays / f.seconds * 1e-6 : 0.0,
                 d.render.pipeline == Pipeline::zbuffer ? "samples" : "rays", state.fps);
     bool changed = false;
+    // What the window shows: the image, or one of the terms that add up to it (SPEC §1.5).
+    {
+        int i = state.show.term ? 1 + static_cast<int>(state.show.kind) : 0;
+        std::string items = std::string("image") + '\0';
+        for (AovKind k : all_aovs()) items += std::string(aov_name(k)) + '\0';
+        items += '\0';
+        if (ImGui::Combo("show (V)", &i, items.c_str())) {
+            state.show = i == 0 ? Showing{} : Showing{true, static_cast<AovKind>(i - 1)};
+            changed = true;
+        }
+    }
     if (ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen))
         changed |= render_section(d);
     if (ImGui::CollapsingHeader("Lighting", ImGuiTreeNodeFlags_DefaultOpen))
@@ -198,6 +209,7 @@ const char* viewer_help_text() {
            "Keys:\n"
            "  H, F1   this help          R   reset the camera\n"
            "  P       next pipeline      M   lambert / phong\n"
+           "  V       show the next term (image, ambient, ... tests)\n"
            "  A       next antialiasing  T   tree attenuation on/off\n"
            "  [ ]     max depth -/+      C   clear the inspected pixel\n"
            "  S       save image         J   save scene (JSON)\n"

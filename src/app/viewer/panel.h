@@ -17,6 +17,7 @@ struct PanelState {
     // edited
     std::string image_path;  ///< where "Save image" writes (.png, .exr, …)
     std::string scene_path;  ///< where "Save scene" writes (.json)
+    Showing show;            ///< the image, or one of its terms (SPEC §1.5)
     // requests (set for one frame)
     bool save_image = false, save_scene = false, reset_camera = false;
 };

@@ -28,7 +28,7 @@ std::vector<PassPlan> plan_passes(const Settings& desc) {
 }
 
 bool render_pass(const Scene& scene, const Settings& settings, const PassPlan& plan, int threads,
-                 const std::atomic<bool>* cancel, RenderFrame& out) {
+                 const std::atomic<bool>* cancel, RenderFrame& out, Showing show) {
     // The pass's resolution and antialiasing, on a copy of the settings: the scene (shapes,
     // BVH) does not depend on them.
     Settings pass = settings;
@@ -39,8 +39,14 @@ bool render_pass(const Scene& scene, const Settings& settings, const PassPlan& p
     RenderOptions options;
     options.control.threads = threads;
     options.control.cancel = cancel;
+    if (show.term) options.aovs = {show.kind};
     Frame frame = render(scene, pass, options);
-    out.image = std::move(frame.image);
+    if (show.term && !frame.aovs.empty()) {
+        Aov& a = frame.aovs.front();
+        out.image = a.scalar() || a.kind == AovKind::normal ? aov_picture(a) : std::move(a.image);
+    } else {
+        out.image = std::move(frame.image);
+    }
     out.divisor = plan.divisor;
     out.antialiased = plan.antialiased;
     out.seconds = frame.stats.seconds;
@@ -65,11 +71,11 @@ RenderWorker::~RenderWorker() {
     thread_.join();
 }
 
-uint64_t RenderWorker::submit(Scene scene, Settings settings) {
+uint64_t RenderWorker::submit(Scene scene, Settings settings, Showing show) {
     uint64_t g;
     {
         std::lock_guard lock(mutex_);
-        pending_ = Job{std::move(scene), std::move(settings)};
+        pending_ = Job{std::move(scene), std::move(settings), show};
         g = ++generation_;
         cancel_requested_ns_ = now_ns();
         cancel_ = true;  // the render under way stops at its next tile
@@ -104,7 +110,8 @@ void RenderWorker::run() {
         double first_seconds = 0;
         for (size_t i = 0; i < plan.size(); ++i) {
             RenderFrame frame;
-            if (!render_pass(job->scene, job->settings, plan[i], threads_, &cancel_, frame)) {
+            if (!render_pass(job->scene, job->settings, plan[i], threads_, &cancel_, frame,
+                             job->show)) {
                 cancel_latency_ =
                     static_cast<double>(now_ns() - cancel_requested_ns_.load()) * 1e-9;
                 ++cancelled_;

@@ -36,10 +36,17 @@ struct PassPlan {
 };
 std::vector<PassPlan> plan_passes(const Settings& settings);
 
+/// What the viewer shows: the image, or one of its per-term images (SPEC §1.5).
+struct Showing {
+    bool term = false;
+    AovKind kind = AovKind::ambient;
+};
+
 /// Renders one pass of `scene` with `settings` (their image size and antialiasing changed for
-/// the pass on a copy); returns false when cancelled.
+/// the pass on a copy); returns false when cancelled. With a term shown, the pass's image is
+/// that term: colour terms as they are, depth, normal and tests as pictures (aov_picture()).
 bool render_pass(const Scene& scene, const Settings& settings, const PassPlan& plan, int threads,
-                 const std::atomic<bool>* cancel, RenderFrame& out);
+                 const std::atomic<bool>* cancel, RenderFrame& out, Showing show = {});
 
 class RenderWorker {
   public:
@@ -50,7 +57,7 @@ class RenderWorker {
 
     /// Cancels the render under way and starts rendering `scene` with `settings` from the
     /// coarsest pass; returns the new generation.
-    uint64_t submit(Scene scene, Settings settings);
+    uint64_t submit(Scene scene, Settings settings, Showing show = {});
 
     /// Moves the newest finished pass not taken yet into `out`; false when there is none.
     bool take_frame(RenderFrame& out);
@@ -74,6 +81,7 @@ class RenderWorker {
     struct Job {
         Scene scene;
         Settings settings;
+        Showing show;
     };
     std::optional<Job> pending_;
     bool quit_ = false;

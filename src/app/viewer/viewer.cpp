@@ -64,6 +64,11 @@ class Viewer {
             parse_click(o.click, desc_, sel_x_, sel_y_);
             selected_ = true;
         }
+        if (!o.show.empty()) {
+            const std::vector<AovKind> kinds = parse_aov_list(o.show, "--aov " + o.show);
+            if (kinds.size() != 1) throw InputError("--aov " + o.show + ": name one term to show");
+            panel_.show = {true, kinds.front()};
+        }
     }
 
     int run();
@@ -175,7 +180,7 @@ void Viewer::apply_edits() {
     // Rebuilt only when the edit needs it (objects, tessellation, accel): light, material,
     // camera and render-setting edits reuse the scene, its geometry and its BVH.
     const Scene& scene = edit_.scene();
-    generation_ = worker_.submit(scene, desc_);
+    generation_ = worker_.submit(scene, desc_, panel_.show);
     final_shown_ = false;
     have_full_ = false;
     if (selected_) tree_ = ray_tree(scene, desc_, sel_x_ + 0.5f, sel_y_ + 0.5f);
@@ -218,6 +223,17 @@ void Viewer::handle_key(SDL_Keycode key) {
         case SDLK_t:
             r.tree_attenuation = !r.tree_attenuation;
             break;
+        case SDLK_v: {  // image → ambient → … → tests → image
+            Showing& s = panel_.show;
+            if (!s.term) {
+                s = {true, AovKind::ambient};
+            } else if (static_cast<int>(s.kind) + 1 < kAovCount) {
+                s.kind = static_cast<AovKind>(static_cast<int>(s.kind) + 1);
+            } else {
+                s = {};
+            }
+            break;
+        }
         case SDLK_LEFTBRACKET:
             r.max_depth = std::max(static_cast<int>(panel_slider_range(PanelSlider::max_depth).lo),
                                    r.max_depth - 1);
