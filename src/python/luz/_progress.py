@@ -1,5 +1,8 @@
 """The bar luz.render(progress=True) draws: tqdm's when tqdm imports, else a line on
-sys.stderr. Called from the thread that called render(), never from the render's threads."""
+sys.stderr. Called from the thread that called render(), never from the render's threads.
+
+tqdm's text bar, in a terminal and in a notebook alike: its notebook widget (tqdm.auto) needs
+ipywidgets 7 or later, and Debian 12 ships ipywidgets 6."""
 
 import sys
 import time
@@ -13,7 +16,7 @@ class Bar:
         self._drawn = False
         self._start = time.monotonic()
         try:
-            from tqdm.auto import tqdm
+            from tqdm import tqdm
         except ImportError:
             self._tqdm = None
         else:
