@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,6 +42,22 @@ SceneDesc load_scene_value(const nlohmann::ordered_json& value, const std::strin
 
 /// Parses one "PATH=JSON" as given to --set. Throws SceneError when malformed.
 Override parse_set(const std::string& arg);
+
+// read_scene_text(source) (scene/scene_loader.h): a file's or demo's text, label and folder,
+// so that a front end can parse it again later with other overrides (parse_scene).
+
+/// The scene keys a front end's render options set (SPEC §3 `--pipeline` … `--threshold`,
+/// SPEC §5 the Python keywords of the same names), each as the user gave it: a number's text
+/// or a word; an unset one keeps the scene's value.
+struct SceneOptions {
+    std::optional<std::string> pipeline, model, width, height, max_depth, aa, samples, threshold;
+};
+
+/// The overrides that set those keys (render.pipeline, render.model, image.width,
+/// image.height, render.max_depth, render.antialias.mode, .samples, .threshold), in that order,
+/// each named after its command-line option ("--width 800") so that the loader checks and
+/// reports them like the keys themselves: numbers go as typed, words as JSON strings.
+std::vector<Override> option_overrides(const SceneOptions& options);
 
 /// How often a Scene's parts were built: a test of "edits rebuild nothing they need not".
 struct BuildCounts {

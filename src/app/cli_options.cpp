@@ -2,7 +2,6 @@
 #include "app/cli_options.h"
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 namespace luz {
 
@@ -64,22 +63,9 @@ void add_render_options(CLI::App& cmd, RenderArgs& o) {
 std::vector<Override> overrides_of(const RenderArgs& o) {
     std::vector<Override> out;
     for (const std::string& s : o.sets) out.push_back(parse_set(s));
-
-    // Numbers go to the loader as typed (it checks their type and range); words are quoted.
-    auto number = [&](const std::optional<std::string>& v, const char* path, const char* opt) {
-        if (v) out.push_back(Override{path, *v, opt});
-    };
-    auto word = [&](const std::optional<std::string>& v, const char* path, const char* opt) {
-        if (v) out.push_back(Override{path, nlohmann::json(*v).dump(), opt});
-    };
-    word(o.pipeline, "render.pipeline", "--pipeline");
-    word(o.model, "render.model", "--model");
-    number(o.width, "image.width", "--width");
-    number(o.height, "image.height", "--height");
-    number(o.max_depth, "render.max_depth", "--max-depth");
-    word(o.aa, "render.antialias.mode", "--aa");
-    number(o.samples, "render.antialias.samples", "--samples");
-    number(o.threshold, "render.antialias.threshold", "--threshold");
+    const std::vector<Override> options = option_overrides(
+        {o.pipeline, o.model, o.width, o.height, o.max_depth, o.aa, o.samples, o.threshold});
+    out.insert(out.end(), options.begin(), options.end());
     return out;
 }
 

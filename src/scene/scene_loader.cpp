@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <utility>
 
 #include "scene/demo_scenes.h"
 #include "scene/json_readers.h"
@@ -83,7 +84,7 @@ SceneDesc parse_scene(std::string_view json_text, const std::string& file,
     return scene;
 }
 
-SceneDesc load_scene(const std::string& source, const std::vector<Override>& overrides) {
+SceneText read_scene_text(const std::string& source) {
     if (source.rfind("demo:", 0) == 0) {
         const std::string name = source.substr(5);
         const DemoScene* demo = find_demo(name);
@@ -94,7 +95,7 @@ SceneDesc load_scene(const std::string& source, const std::vector<Override>& ove
             }
             throw InputError(source + ": no such built-in scene (known: " + known + ")");
         }
-        return parse_scene(demo->json, source, "", overrides);
+        return {std::string(demo->json), source, ""};
     }
 
     std::error_code ec;
@@ -112,8 +113,12 @@ SceneDesc load_scene(const std::string& source, const std::vector<Override>& ove
     std::fclose(f);
     if (failed) throw InputError(source + ": cannot read: " + std::strerror(err));
 
-    const std::string base_dir = std::filesystem::path(source).parent_path().string();
-    return parse_scene(text, source, base_dir, overrides);
+    return {std::move(text), source, std::filesystem::path(source).parent_path().string()};
+}
+
+SceneDesc load_scene(const std::string& source, const std::vector<Override>& overrides) {
+    const SceneText t = read_scene_text(source);
+    return parse_scene(t.text, t.label, t.base_dir, overrides);
 }
 
 }  // namespace luz

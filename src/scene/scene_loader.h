@@ -21,6 +21,19 @@ struct Override {
 /// Parses "PATH=JSON" as given to --set; throws InputError when malformed.
 Override parse_set(const std::string& arg);
 
+/// A scene's JSON text as load_scene() reads it, with how messages name it and the folder its
+/// relative paths start from.
+struct SceneText {
+    std::string text;
+    std::string label;     ///< the file path as given, or "demo:NAME"
+    std::string base_dir;  ///< the file's folder ("" for a built-in scene)
+};
+
+/// Reads `source` — a file path or "demo:NAME" — without parsing it: parse_scene(text, label,
+/// base_dir, overrides) then gives what load_scene(source, overrides) gives. Throws InputError
+/// for an unknown demo or an unreadable file.
+SceneText read_scene_text(const std::string& source);
+
 /// Loads `source` — a file path or "demo:NAME" — applies the overrides in order and validates
 /// the result (SPEC §2). Throws InputError naming the file and the line:column or key path.
 SceneDesc load_scene(const std::string& source, const std::vector<Override>& overrides = {});

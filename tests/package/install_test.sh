@@ -21,3 +21,12 @@ cmake --build "$tmp/build" >/dev/null
 "$tmp/prefix/bin/luz" render demo:primitives -o "$tmp/cli.png" -q
 cmp "$tmp/minimal.png" "$tmp/cli.png"
 echo "examples/minimal wrote the same $(stat -c %s "$tmp/cli.png") bytes as luz render"
+
+# The Python package, when it was built: importable from where it was installed.
+for site in "$tmp"/prefix/lib/python3*/site-packages; do
+  if [ -d "$site/luz" ]; then
+    PYTHONPATH="$site" /usr/bin/python3 -c \
+      "import luz; assert luz.render('demo:primitives', width=8, height=6).image.shape == (6, 8, 3)"
+    echo "the Python package imports from $site"
+  fi
+done
