@@ -4,7 +4,8 @@ set -euo pipefail
 packages=(cmake ninja-build g++ pkg-config nlohmann-json3-dev libcli11-dev libpng-dev
           zlib1g-dev libopenexr-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev
           libtinyobjloader-dev libembree-dev  # Embree 3: bench/bvh_vs_embree only
-          libsdl2-dev libimgui-dev libgl-dev xvfb xauth)  # the viewer (luz view) and its tests
+          libsdl2-dev libimgui-dev libgl-dev xvfb xauth  # the viewer (luz view) and its tests
+          python3 python3-numpy python3-matplotlib chromium)  # luz figures and its page test
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
