@@ -17,8 +17,12 @@ def make(ctx):
 
 def primitives(ctx):
     """demo:primitives through the orthographic Z-buffer with both models."""
-    runs = [render(ctx, "demo:primitives", f"primitives_{m}", ["--model", m])
-            for m in ("lambert", "phong")]
+    # demo:primitives' lights (Il = 10 and 4) are exposed for 1/(d + K): lambert, which has no
+    # distance term, gets what they deliver at the objects, Il/(d + K) ≈ 10/11 and 4/12
+    lambert = ["--model", "lambert", "--set", "lights.0.intensity=0.9", "--set",
+               "lights.1.intensity=0.33"]
+    runs = [render(ctx, "demo:primitives", "primitives_lambert", lambert),
+            render(ctx, "demo:primitives", "primitives_phong", ["--model", "phong"])]
     fig = panels([to8(r["image"]) for r in runs],
                  ["I = Ia·Ka + Il·Kd·cos(θ)  (lambert)",
                   "I = Ia·Ka + Σ Il/(d+K)·(Kd·cos(θ) + Ks·cos(α)^n)  (phong)"], scale=1.4)
@@ -27,10 +31,14 @@ def primitives(ctx):
         "primitives", "Trabalho prático: os cinco objetos", "The practical assignment",
         "Esfera, cubo, cilindro, cone e toro sobre um piso, iluminados em cada ponto pelos dois "
         "modelos, pelo Z-buffer com projeção ortográfica; as constantes são as padrão do luz "
-        "(valores previamente testados), que o usuário muda com --set ou no visualizador.",
+        "(valores previamente testados), que o usuário muda com --set ou no visualizador. "
+        "Lambert não tem o termo de distância: suas luzes recebem o que as da cena entregam "
+        "aos objetos com 1/(d + K), Il = 0.9 e 0.33.",
         "Sphere, cube, cylinder, cone and torus on a floor, lit at every point by both models "
         "through the orthographic Z-buffer; the constants are luz's defaults (previously tested "
-        "values), which the user changes with --set or in the viewer.",
+        "values), which the user changes with --set or in the viewer. Lambert has no distance "
+        "term: its lights get what the scene's deliver at the objects through 1/(d + K), "
+        "Il = 0.9 and 0.33.",
         [path], ["demo:primitives"], [r["command"] for r in runs],
         [(f"{r['stats']['pipeline']} {m}: triangles rasterized, seconds",
           f"{r['stats']['triangles']:,}, {r['stats']['seconds']:.3f} s")
