@@ -8,9 +8,10 @@
 
 #include "image/image.h"
 #include "luz/scene.h"
-#include "render/aov.h"       // AovKind, aov_name(), parse_aov_list(): the terms of SPEC §1.5
-#include "render/parallel.h"  // resolve_threads()
-#include "render/progress.h"  // ProgressBar: a terminal progress bar
+#include "render/aov.h"         // AovKind, aov_name(), parse_aov_list(): the terms of SPEC §1.5
+#include "render/checkpoint.h"  // Checkpoint: --checkpoint FILE
+#include "render/parallel.h"    // resolve_threads()
+#include "render/progress.h"    // ProgressBar: a terminal progress bar
 #include "render/ray_tree.h"
 #include "render/render.h"
 #include "render/sampler.h"

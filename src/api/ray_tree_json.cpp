@@ -46,6 +46,9 @@ std::string ray_tree_json(const RayTree& tree, const SceneDesc& desc, int x, int
                     : desc.render.pipeline == Pipeline::raycast ? "raycast"
                                                                 : "raytrace";
     j["traced_as_raycast"] = tree.raycast_for_zbuffer;
+    // An exploding tree is recorded up to kRayTreeMaxNodes nodes; its colours are still exact.
+    j["truncated"] = tree.truncated;
+    j["max_nodes"] = kRayTreeMaxNodes;
     j["color"] = tree.nodes.empty() ? rgb(pixel) : rgb(tree.nodes[0].color);
     Json nodes = Json::array();
     for (const RayTreeNode& n : tree.nodes) {

@@ -43,6 +43,11 @@ void add_render_options(CLI::App& cmd, RenderArgs& o) {
                    "emitted shadow depth normal tests, comma-separated, or all): X.NAME.EXT "
                    "beside -o X.EXT, or layers of X.exr")
         ->type_name("NAME[,NAME...]");
+    cmd.add_option("--checkpoint", o.checkpoint,
+                   "keep the finished tiles in FILE (every 10 s and when interrupted); run "
+                   "again with the same scene, options and FILE to continue; removed once the "
+                   "output is written")
+        ->type_name("FILE");
     cmd.add_flag("-q,--quiet", o.quiet, "print nothing on success, no progress bar");
     cmd.add_option("--set", o.sets,
                    "override any scene key by dotted path, e.g. materials.red.n=4 or "

@@ -25,6 +25,7 @@ struct RenderArgs {
     std::string stats_file;         ///< empty: no statistics file
     std::string aa_mask_file;       ///< empty: no image of the adaptively refined pixels
     std::string aovs;               ///< --aov NAME[,NAME…] or all (SPEC §1.5)
+    std::string checkpoint;         ///< --checkpoint FILE: finished tiles kept there (SPEC §3)
     bool quiet = false;
     std::optional<uint64_t> max_memory;  ///< bytes; default half of physical memory
 };

@@ -23,6 +23,7 @@ int run_render(const RenderArgs& o) {
     if (!o.output.empty()) check_output_path(o.output, "-o");
     if (!o.stats_file.empty()) check_writable_target(o.stats_file, "--stats");
     if (!o.aa_mask_file.empty()) check_output_path(o.aa_mask_file, "--aa-mask");
+    if (!o.checkpoint.empty()) check_writable_target(o.checkpoint, "--checkpoint");
     const std::vector<AovKind> aovs =
         o.aovs.empty() ? std::vector<AovKind>{} : parse_aov_list(o.aovs, "--aov " + o.aovs);
     const std::vector<Override> overrides = overrides_of(o);
@@ -39,6 +40,15 @@ int run_render(const RenderArgs& o) {
 
     // 3. Build, then render with a progress bar on a terminal.
     const auto start = std::chrono::steady_clock::now();
+    // --checkpoint: the file is read (and refused when it belongs to another render) before
+    // any work; its key is the whole scene as the loader understood it, with the options.
+    std::optional<Checkpoint> checkpoint;
+    if (!o.checkpoint.empty()) {
+        std::string key = scene_to_json(desc, "/") + "\naovs";
+        for (AovKind k : aovs) key += std::string(" ") + aov_name(k);
+        key += o.aa_mask_file.empty() ? "\nno mask" : "\nmask";
+        checkpoint.emplace(o.checkpoint, fingerprint(key));
+    }
     const Scene scene = build(desc);
     ProgressBar bar(!o.quiet && stderr_is_terminal());
     luz::RenderOptions options;
@@ -47,9 +57,12 @@ int run_render(const RenderArgs& o) {
     options.aovs = aovs;
     if (bar.enabled()) options.control.progress = [&bar](double f) { bar.update(f); };
     options.control.cancel = &interrupt_flag();
+    if (checkpoint) options.control.checkpoint = &*checkpoint;
+    options.control.warning = [&bar](const std::string& w) { bar.interject("luz: warning: " + w); };
     set_interrupt_exits_now(false);
     Frame frame = render(scene, desc, options);  // on a throw, ~ProgressBar ends the line
-    throw_if_interrupted();                      // the image is incomplete: write nothing
+    if (checkpoint && !frame.complete) checkpoint->save();  // interrupted: keep what is done
+    throw_if_interrupted();  // the image is incomplete: write nothing
     bar.finish();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -75,6 +88,7 @@ int run_render(const RenderArgs& o) {
     for (auto& f : image_files) f->commit();
     if (stats_file) stats_file->commit();
     if (mask_file) mask_file->commit();
+    if (checkpoint) checkpoint->remove();  // the outputs are written: nothing left to continue
 
     if (!o.quiet) {
         std::printf("wrote %s (%d\u00d7%d, %s, %.2f s)\n", out.c_str(), frame.image.width,

@@ -105,4 +105,15 @@ void ProgressBar::abandon() {
     done_ = true;
 }
 
+void ProgressBar::interject(const std::string& line) {
+    std::lock_guard lock(mutex_);
+    if (enabled_ && drawn_ && !done_) {
+        std::fprintf(out_, "\r\033[K%s\n", line.c_str());
+        draw_locked(best_fraction_);
+    } else {
+        std::fprintf(out_ ? out_ : stderr, "%s\n", line.c_str());
+        std::fflush(out_ ? out_ : stderr);
+    }
+}
+
 }  // namespace luz

@@ -39,6 +39,10 @@ class ProgressBar {
     /// following message starts on a new line.
     void abandon();
 
+    /// Prints `line` on standard error on a line of its own (even when the bar is disabled),
+    /// the bar redrawn after it; any thread.
+    void interject(const std::string& line);
+
     bool enabled() const { return enabled_; }
 
   private:

@@ -2,6 +2,8 @@
 // at each sample point by the antialiasing sampler (render/sampler.h), which renders the image
 // in tiles in parallel; counters per tile summed in tile order.
 #include <algorithm>
+#include <atomic>
+#include <string>
 
 #include "render/ray_tracer.h"
 #include "render/sampler.h"
@@ -10,21 +12,46 @@ namespace luz {
 
 void render_ray_traced(const BuiltScene& scene, const Settings& settings,
                        const RenderControl& control, Image& out, RenderStats& stats) {
-    const RayTracer tracer(scene, settings, settings.render.pipeline == Pipeline::raytrace);
+    const RayTracer tracer(scene, settings, settings.render.pipeline == Pipeline::raytrace,
+                           control.cancel);
     const int w = settings.image.width, h = settings.image.height;
+    // An exploding ray tree (2^depth rays a sample on reflective and transparent surfaces):
+    // said once, when a sample traces more than kExplodingTreeRays rays and min_weight is 0.
+    std::atomic<bool> warned{false};
+    const bool watch = control.warning && settings.render.min_weight == 0;
+    auto watch_sample = [&](uint64_t before, const TraceCounters& c) {
+        const uint64_t rays = work_of(c) - before;
+        if (!watch || rays <= kExplodingTreeRays || warned.exchange(true)) return;
+        control.warning("a sample traced " + std::to_string(rays) +
+                        " rays: the ray tree grows as 2^depth on reflective and transparent "
+                        "surfaces (render.max_depth " +
+                        std::to_string(settings.render.max_depth) +
+                        "); render.min_weight (e.g. --set render.min_weight=0.01) stops rays "
+                        "that weigh little, or lower render.max_depth");
+    };
     std::vector<TraceCounters> counters;
     SamplerCounts counts;
     if (control.terms && control.terms->any()) {  // the colour and its terms (SPEC §1.5)
         TermOut term_out{out, *control.terms};
         counts = sample_image(
             settings.render.antialias, w, h, control,
-            [&tracer](float x, float y, TraceCounters& c) { return tracer.sample_terms(x, y, c); },
+            [&](float x, float y, TraceCounters& c) {
+                const uint64_t before = work_of(c);
+                const TermSample s = tracer.sample_terms(x, y, c);
+                watch_sample(before, c);
+                return s;
+            },
             term_out, counters, control.aa_mask);
     } else {
         counts = sample_image(
             settings.render.antialias, w, h, control,
-            [&tracer](float x, float y, TraceCounters& c) { return tracer.sample(x, y, c); }, out,
-            counters, control.aa_mask);
+            [&](float x, float y, TraceCounters& c) {
+                const uint64_t before = work_of(c);
+                const Rgb s = tracer.sample(x, y, c);
+                watch_sample(before, c);
+                return s;
+            },
+            out, counters, control.aa_mask);
     }
     for (const TraceCounters& c : counters) {
         stats.rays_primary += c.primary;

@@ -41,12 +41,15 @@ bool refract(const Vec3& D, const Vec3& N, float n1, float n2, Vec3& T) {
     return true;
 }
 
-RayTracer::RayTracer(const BuiltScene& scene, const Settings& settings, bool full)
+RayTracer::RayTracer(const BuiltScene& scene, const Settings& settings, bool full,
+                     const std::atomic<bool>* cancel)
     : scene_(scene),
       settings_(settings),
       camera_(Camera::from(settings.camera, settings.image.width, settings.image.height)),
       lighting_{settings.render.model, settings.ambient, settings.attenuation_k, settings.lights},
       max_depth_(full ? settings.render.max_depth : 0),
+      min_weight_(settings.render.min_weight),
+      cancel_(cancel),
       full_(full),
       tree_attenuation_(settings.render.tree_attenuation) {
     for (size_t j = 0; j < settings.lights.size(); ++j)
@@ -69,13 +72,19 @@ int RayTracer::nearest_light(const Ray& ray, float& t_max, TraceCounters& counte
 
 Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& distance,
                      RayTree* tree) const {
-    return tree ? trace_impl<true>(ray, depth, counters, distance, tree)
-                : trace_impl<false>(ray, depth, counters, distance, nullptr);
+    return tree ? trace_impl<true>(ray, depth, 1.0f, counters, distance, tree)
+                : trace_impl<false>(ray, depth, 1.0f, counters, distance, nullptr);
 }
 
 template <bool kRecord, bool kTerms>
-Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, float& distance,
-                          RayTree* tree_in, TermSample* terms_in) const {
+Rgb RayTracer::trace_impl(const Ray& ray, int depth, float weight, TraceCounters& counters,
+                          float& distance, RayTree* tree_in, TermSample* terms_in) const {
+    // Cancelled: return at once, so that even an exploding ray tree stops within a moment (a
+    // relaxed load per ray: no measurable cost).
+    if (cancel_ && cancel_->load(std::memory_order_relaxed)) {
+        distance = kInfinity;
+        return Rgb{0.0f};
+    }
     RayTree* const tree = kRecord ? tree_in : nullptr;  // a constant null when not recording
     const Settings& desc = settings_;
     // Ray-tree recording (viewer only): this ray's node, filled as the numbers are computed.
@@ -175,13 +184,23 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, fl
     const Vec3 N = dot(D, sp.N) < 0 ? sp.N : -sp.N;
     const float K = desc.attenuation_k;
     // A = 1, or 1/(d+K) for the secondary segment's length d (SPEC §1.1: tree_attenuation).
-    int child = -1;  // the last secondary ray's node (ray-tree recording)
-    auto secondary = [&](const Ray& r, uint64_t& count) {
+    int child = -1;  // the last secondary ray's node (ray-tree recording; -1: not recorded)
+    // A secondary ray scaled by `coefficient`: traced unless its weight is below min_weight.
+    auto secondary = [&](const Ray& r, float coefficient, uint64_t& count) {
+        child = -1;
+        const float w = weight * coefficient;  // SPEC §2: render.min_weight
+        if (w < min_weight_) return Rgb{0.0f};
         ++count;
         float d;
-        if (tree) child = static_cast<int>(tree->nodes.size());
-        const Rgb s = trace_impl<kRecord, false>(r, depth + 1, counters, d, tree);
-        if (tree) {
+        Rgb s;
+        if (tree && tree->nodes.size() >= kRayTreeMaxNodes) {  // cut: traced, not recorded
+            tree->truncated = true;
+            s = trace_impl<false, false>(r, depth + 1, w, counters, d, nullptr);
+        } else {
+            if (tree) child = static_cast<int>(tree->nodes.size());
+            s = trace_impl<kRecord, false>(r, depth + 1, w, counters, d, tree);
+        }
+        if (tree && child >= 0) {
             tree->nodes[child].returned = s;
             tree->nodes[child].A = !tree_attenuation_ ? 1.0f
                                    : std::isinf(d)    ? 0.0f
@@ -192,6 +211,7 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, fl
     };
     // Records a child's kind, weight and contribution (ray-tree recording).
     auto record_child = [&](RayKind kind, float coefficient, const Rgb& contribution) {
+        if (child < 0) return;  // not traced (min_weight) or beyond the recording cap
         RayTreeNode& n = tree->nodes[child];
         n.kind = kind;
         n.parent = self;
@@ -203,7 +223,7 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, fl
     const Vec3 R = reflect(D, N);
     if (m.reflection > 0) {
         const Rgb contribution =
-            secondary(spawn_ray(sp.P, sp.Ng, R), counters.reflection) * m.reflection;
+            secondary(spawn_ray(sp.P, sp.Ng, R), m.reflection, counters.reflection) * m.reflection;
         c += contribution;
         if constexpr (kTerms) out->reflected = contribution;
         if (tree) record_child(RayKind::reflection, m.reflection, contribution);
@@ -215,7 +235,8 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, TraceCounters& counters, fl
         const bool tir = !refract(D, N, n1, n2, T);
         const Vec3 dir = tir ? R : T;  // total internal reflection: R
         const Rgb contribution =
-            secondary(spawn_ray(sp.P, sp.Ng, dir), counters.refraction) * m.transparency;
+            secondary(spawn_ray(sp.P, sp.Ng, dir), m.transparency, counters.refraction) *
+            m.transparency;
         c += contribution;
         if constexpr (kTerms) out->refracted = contribution;
         if (tree) {
@@ -231,12 +252,12 @@ Rgb RayTracer::sample(float px, float py, TraceCounters& counters) const {
     // A work item's first sample and every kTimedSampleEvery-th after it: every render that
     // traces a ray times at least one.
     if (counters.primary++ % kTimedSampleEvery != 0) {
-        return trace_impl<false>(camera_.ray(px, py), 0, counters, distance, nullptr);
+        return trace_impl<false>(camera_.ray(px, py), 0, 1.0f, counters, distance, nullptr);
     }
     // A timed sample: the whole of it, and its scene queries (IntersectCounters::timing).
     const auto start = std::chrono::steady_clock::now();
     counters.tests.timing = true;
-    const Rgb c = trace_impl<false>(camera_.ray(px, py), 0, counters, distance, nullptr);
+    const Rgb c = trace_impl<false>(camera_.ray(px, py), 0, 1.0f, counters, distance, nullptr);
     counters.tests.timing = false;
     counters.timed_ns += static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
                                                    std::chrono::steady_clock::now() - start)
@@ -252,7 +273,8 @@ TermSample RayTracer::sample_terms(float px, float py, TraceCounters& counters) 
     const bool timed = counters.primary++ % kTimedSampleEvery == 0;
     const auto start = std::chrono::steady_clock::now();
     counters.tests.timing = timed;
-    s.colour = trace_impl<false, true>(camera_.ray(px, py), 0, counters, distance, nullptr, &s);
+    s.colour =
+        trace_impl<false, true>(camera_.ray(px, py), 0, 1.0f, counters, distance, nullptr, &s);
     counters.tests.timing = false;
     if (timed) {
         counters.timed_ns +=

@@ -2,6 +2,7 @@
 // refraction by Snell's law; raycast is the same code with depth 0 and no shadow rays.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -28,6 +29,14 @@ struct TraceCounters {
 /// share of time spent in intersection (RenderStats::intersect_sampled_seconds).
 inline constexpr uint64_t kTimedSampleEvery = 256;
 
+/// Rays traced so far (all kinds): the work the samplers' progress counts (render/sampler.h).
+inline uint64_t work_of(const TraceCounters& c) {
+    return c.primary + c.shadow + c.reflection + c.refraction;
+}
+
+/// A sample tracing more rays than this means an exploding ray tree (the render warns once).
+inline constexpr uint64_t kExplodingTreeRays = 4096;
+
 /// Offset of secondary and shadow ray origins along the geometric normal (SPEC §1.1: ≤ 1e-4).
 inline constexpr float kRayEpsilon = 1e-4f;
 
@@ -50,12 +59,16 @@ class RayTracer {
   public:
     /// `full`: raytrace (shadow rays, reflection, refraction up to max_depth); otherwise
     /// raycast (the local model with every light visible, no secondary rays).
-    RayTracer(const BuiltScene& scene, const Settings& settings, bool full);
+    RayTracer(const BuiltScene& scene, const Settings& settings, bool full,
+              const std::atomic<bool>* cancel = nullptr);
 
     /// The colour seen along `ray` at ray-tree depth `depth` (SPEC §1.1). `distance` receives
     /// the distance to what the ray hit (infinity on a miss). When `tree` is set, appends this
     /// ray's node and its children's with the numbers used (render/ray_tree.h); normal renders
     /// pass nullptr and record nothing.
+    /// Secondary rays weighing less than render.min_weight are not traced (SPEC §2); a
+    /// recorded tree stops recording at kRayTreeMaxNodes nodes (RayTree::truncated), the
+    /// colour still traced in full. Once `cancel` (if set) is true, every ray returns at once.
     Rgb trace(const Ray& ray, int depth, TraceCounters& counters, float& distance,
               RayTree* tree = nullptr) const;
 
@@ -73,9 +86,10 @@ class RayTracer {
     /// trace() with ray-tree recording (kRecord, `tree` set) or without: the renders' copy
     /// carries none of the recording's branches and state. kTerms: also fills `terms` with this
     /// ray's terms (a primary ray; its children are traced without).
+    /// `weight`: the product of the coefficients that scale this ray (1 for a primary ray).
     template <bool kRecord, bool kTerms = false>
-    Rgb trace_impl(const Ray& ray, int depth, TraceCounters& counters, float& distance,
-                   RayTree* tree_in, TermSample* terms = nullptr) const;
+    Rgb trace_impl(const Ray& ray, int depth, float weight, TraceCounters& counters,
+                   float& distance, RayTree* tree_in, TermSample* terms = nullptr) const;
 
     /// The nearest visible light sphere along ray within (0, t_max), or −1.
     int nearest_light(const Ray& ray, float& t_max, TraceCounters& counters) const;
@@ -86,6 +100,8 @@ class RayTracer {
     Camera camera_;
     Lighting lighting_;
     int max_depth_;
+    float min_weight_;
+    const std::atomic<bool>* cancel_;
     bool full_;
     bool tree_attenuation_;
 };

@@ -42,8 +42,12 @@ struct RayTreeNode {
 };
 
 /// The nodes of one primary ray's tree, parents before children (nodes[0] is the primary).
+/// The most nodes a recorded ray tree keeps: an exploding tree (2^depth rays) is cut there.
+inline constexpr size_t kRayTreeMaxNodes = 20000;
+
 struct RayTree {
     std::vector<RayTreeNode> nodes;
+    bool truncated = false;  ///< more rays were traced than kRayTreeMaxNodes: recording stopped
     bool raycast_for_zbuffer = false;  ///< the scene's pipeline is zbuffer: traced as raycast
 };
 

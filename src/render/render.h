@@ -3,6 +3,7 @@
 
 #include <atomic>
 #include <functional>
+#include <string>
 
 #include "geometry/scene.h"
 #include "image/image.h"
@@ -12,6 +13,7 @@ namespace luz {
 
 struct AaMask;
 struct TermPlanes;
+class Checkpoint;
 
 /// How a render is run: threads, progress reports and cancellation.
 struct RenderControl {
@@ -25,6 +27,12 @@ struct RenderControl {
     AaMask* aa_mask = nullptr;
     /// When set, receives the per-term images it holds (SPEC §1.5), each the image's size.
     const TermPlanes* terms = nullptr;
+    /// When set, called at most once per render (from a render thread) with a warning about
+    /// the render itself, e.g. an exploding ray tree (render/ray_render.cpp).
+    std::function<void(const std::string&)> warning;
+    /// When set, the ray pipelines keep finished tiles in it and skip those it already holds
+    /// (render/checkpoint.h); the zbuffer renders every tile.
+    Checkpoint* checkpoint = nullptr;
 };
 
 /// Renders `scene` with `settings` (image, camera, pipeline, lights, materials …); fills

@@ -135,6 +135,39 @@ void tent_filter_separable(const GridSpec& g, const PixelRect& tile, const Pixel
 
 }  // namespace
 
+void append_rect(std::string& out, const Image& img, const PixelRect& r) {
+    for (int y = r.y0; y < r.y1; ++y)
+        out.append(reinterpret_cast<const char*>(&img.at(r.x0, y)), sizeof(Rgb) * r.width());
+}
+
+void read_rect(std::string_view& in, Image& img, const PixelRect& r) {
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x) read_raw(in, img.at(x, y));
+}
+
+void append_rect(std::string& out, const TermOut& o, const PixelRect& r) {
+    append_rect(out, o.image, r);
+    for (const Image* plane : o.planes.plane)
+        if (plane) append_rect(out, *plane, r);
+}
+
+void read_rect(std::string_view& in, TermOut& o, const PixelRect& r) {
+    read_rect(in, o.image, r);
+    for (Image* plane : o.planes.plane)
+        if (plane) read_rect(in, *plane, r);
+}
+
+std::vector<size_t> tile_order(size_t count) {
+    std::vector<size_t> order(count);
+    for (size_t i = 0; i < count; ++i) order[i] = i;
+    // Fisher–Yates with a fixed hash for the random numbers: the same order in every run.
+    for (size_t i = count; i > 1; --i) {
+        const size_t k = static_cast<size_t>(mix64(kJitterSeed + i) % i);
+        std::swap(order[i - 1], order[k]);
+    }
+    return order;
+}
+
 GridSpec GridSpec::from(const AntialiasDesc& aa, int width, int height) {
     GridSpec g;
     g.s = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(aa.samples)))));

@@ -8,14 +8,19 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "image/image.h"
 #include "render/aov.h"
+#include "render/checkpoint.h"
 #include "render/parallel.h"
 #include "render/render.h"
+#include "scene/input_error.h"
 #include "scene/scene_desc.h"
 
 namespace luz {
@@ -46,6 +51,61 @@ struct PixelRect {
 
 /// Side of the square tiles the samplers work in (pixels).
 inline constexpr int kSamplerTile = 16;
+
+/// The work a work item's counters have counted so far (rays, for the ray tracer's counters:
+/// ray_tracer.h overloads it); progress is reported sooner after costly pixels.
+template <class Counters>
+uint64_t work_of(const Counters&) {
+    return 0;
+}
+
+/// Progress by pixels finished (not only by tiles), reported to RenderControl::progress: each
+/// work item calls pixel() after every pixel; a count is handed over at the end of every
+/// kSamplerTile pixels, or at once after a pixel whose work (rays) was large, so that the bar
+/// moves even when single pixels take seconds. With tiles rendered in a scattered order
+/// (tile_order()), the share of pixels done is an unbiased estimate of the share of work.
+class PixelProgress {
+  public:
+    PixelProgress(const RenderControl& control, uint64_t total_pixels)
+        : control_(control), total_(total_pixels ? total_pixels : 1) {}
+
+    /// One work item's reports: a local count, handed over now and then.
+    template <class Counters>
+    struct Item {
+        PixelProgress& p;
+        const Counters& counters;
+        uint64_t pending = 0, work_at_flush = 0;
+
+        void pixel() {
+            ++pending;
+            const uint64_t work = work_of(counters);
+            if (pending >= kSamplerTile || work - work_at_flush >= kFlushWork) {
+                p.add(pending);
+                pending = 0;
+                work_at_flush = work;
+            }
+        }
+        ~Item() {
+            if (pending) p.add(pending);
+        }
+    };
+
+    void add(uint64_t pixels) {
+        const uint64_t done = done_.fetch_add(pixels, std::memory_order_relaxed) + pixels;
+        if (control_.progress) control_.progress(static_cast<double>(done) / total_);
+    }
+
+  private:
+    static constexpr uint64_t kFlushWork = 2048;  ///< rays after which a count is handed over
+    const RenderControl& control_;
+    uint64_t total_;
+    std::atomic<uint64_t> done_{0};
+};
+
+/// The order in which tiles are rendered: a fixed pseudo-random permutation of 0 … count−1
+/// (the same in every run), so that costly regions are spread over the whole render and the
+/// progress bar's time left stays honest. The image does not depend on the order.
+std::vector<size_t> tile_order(size_t count);
 
 /// Seed of the jitter hash: a constant, so that every render of a scene is the same.
 inline constexpr uint64_t kJitterSeed = 0x6c757a2d6a697474ull;  // "luz-jitt"
@@ -230,9 +290,11 @@ struct Refiner {
 /// `fine.begin_pixel(i, j)` once before the first sub-corner of a refined pixel and
 /// `fine.colour(i, j, k, l)`, the colour at (i + k/S, j + l/S). Writes the pixels into `out`,
 /// their levels into `mask` (if any) and counts sub-corner samples and refined pixels.
-template <class Sample, class Fine, class Out>
-void refine_tile(const AdaptiveSpec& spec, const PixelRect& tile, const Sample* corners, Fine& fine,
-                 Out& out, AaMask* mask, SamplerCounts& counts) {
+/// `tick()` is called after each pixel (progress).
+template <class Sample, class Fine, class Out, class Tick = void (*)()>
+void refine_tile(
+    const AdaptiveSpec& spec, const PixelRect& tile, const Sample* corners, Fine& fine, Out& out,
+    AaMask* mask, SamplerCounts& counts, Tick&& tick = +[] {}) {
     const int S = spec.lattice();
     const size_t row = static_cast<size_t>(spec.width) + 1;
     AdaptiveCache<Sample>& cache = AdaptiveCache<Sample>::for_this_thread();
@@ -257,6 +319,7 @@ void refine_tile(const AdaptiveSpec& spec, const PixelRect& tile, const Sample* 
             }
             put(out, i, j, value);
             if (mask) mask->level[static_cast<size_t>(j) * spec.width + i] = uint8_t(deepest);
+            tick();
         }
     }
 }
@@ -274,6 +337,27 @@ std::vector<S>& grid_scratch_for_this_thread() {
     thread_local std::vector<S> buf;
     return buf;
 }
+
+/// Checkpoint bytes of a work item (render/checkpoint.h): raw copies of plain values and of
+/// the output's pixels in a rectangle, read back in the same order.
+template <class T>
+void append_raw(std::string& out, const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    out.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+template <class T>
+void read_raw(std::string_view& in, T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    if (in.size() < sizeof v)
+        throw InputError("--checkpoint: damaged checkpoint (a tile is short)");
+    std::memcpy(&v, in.data(), sizeof v);
+    in.remove_prefix(sizeof v);
+}
+/// The pixels of `r` of an image, or of the image and each term plane of a TermOut.
+void append_rect(std::string& out, const Image& img, const PixelRect& r);
+void read_rect(std::string_view& in, Image& img, const PixelRect& r);
+void append_rect(std::string& out, const TermOut& o, const PixelRect& r);
+void read_rect(std::string_view& in, TermOut& o, const PixelRect& r);
 
 /// Renders an image with the antialiasing `aa`: `colour(x, y, counters)` gives the sample at
 /// pixel-space point (x, y) — an Rgb colour, or a TermSample (its colour and terms), put into
@@ -298,7 +382,8 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
         mask->height = height;
         mask->level.assign(static_cast<size_t>(width) * height, 0);
     }
-    std::atomic<size_t> done{0};
+    // Tiles in a scattered order (tile_order); counters are kept per tile, summed in tile order.
+    const std::vector<size_t> order = tile_order(tile_count);
     auto tile_of = [&](size_t t) {
         const int x0 = static_cast<int>(t % tiles_x) * T, y0 = static_cast<int>(t / tiles_x) * T;
         return PixelRect{x0, y0, std::min(width, x0 + T), std::min(height, y0 + T)};
@@ -306,31 +391,77 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
     auto cancelled = [&] {
         return control.cancel && control.cancel->load(std::memory_order_relaxed);
     };
-    auto report = [&] {
-        if (control.progress) control.progress(static_cast<double>(++done) / items);
+    // Progress by pixels: adaptive counts each pixel in both passes.
+    PixelProgress progress(control, static_cast<uint64_t>(width) * height * (adaptive ? 2 : 1));
+    // Checkpoint (--checkpoint): items finished by an earlier run are read back instead of
+    // rendered; each item finished now is kept, unless the render was cancelled meanwhile.
+    Checkpoint* const checkpoint = control.checkpoint;
+    if (checkpoint) checkpoint->start(items);
+    auto restored = [&](size_t item, auto&& read) {
+        if (!checkpoint || !checkpoint->done(item)) return false;
+        std::string_view bytes = checkpoint->data(item);
+        read(bytes);
+        if (!bytes.empty()) throw InputError("--checkpoint: damaged checkpoint (a tile is long)");
+        return true;
+    };
+    auto keep = [&](size_t item, auto&& write) {
+        if (!checkpoint || cancelled()) return;
+        std::string bytes;
+        write(bytes);
+        checkpoint->finish(item, std::move(bytes));
     };
 
     switch (aa.mode) {
         case AaMode::none:
-            parallel_items(control.threads, tile_count, [&](size_t t) {
+            parallel_items(control.threads, tile_count, [&](size_t item) {
                 if (cancelled()) return;
+                const size_t t = order[item];
                 const PixelRect r = tile_of(t);
+                if (restored(t, [&](std::string_view& in) {
+                        read_raw(in, counters[t]);
+                        read_raw(in, counts[t]);
+                        read_rect(in, out, r);
+                    })) {
+                    progress.add(static_cast<uint64_t>(r.width()) * r.height());
+                    return;
+                }
                 Counters c{};
-                for (int y = r.y0; y < r.y1; ++y)
-                    for (int x = r.x0; x < r.x1; ++x) put(out, x, y, colour(x + 0.5f, y + 0.5f, c));
+                {
+                    PixelProgress::Item<Counters> tick{progress, c};
+                    for (int y = r.y0; y < r.y1; ++y) {
+                        for (int x = r.x0; x < r.x1; ++x) {
+                            put(out, x, y, colour(x + 0.5f, y + 0.5f, c));
+                            tick.pixel();
+                        }
+                    }
+                }
                 counters[t] = c;
                 counts[t].samples = static_cast<uint64_t>(r.width()) * r.height();
-                report();
+                keep(t, [&](std::string& o) {
+                    append_raw(o, counters[t]);
+                    append_raw(o, counts[t]);
+                    append_rect(o, out, r);
+                });
             });
             break;
         case AaMode::grid: {
             const GridSpec g = GridSpec::from(aa, width, height);
-            parallel_items(control.threads, tile_count, [&](size_t t) {
+            parallel_items(control.threads, tile_count, [&](size_t item) {
                 if (cancelled()) return;
+                const size_t t = order[item];
                 const PixelRect tile = tile_of(t), region = g.region(tile);
+                if (restored(t, [&](std::string_view& in) {
+                        read_raw(in, counters[t]);
+                        read_raw(in, counts[t]);
+                        read_rect(in, out, tile);
+                    })) {
+                    progress.add(static_cast<uint64_t>(tile.width()) * tile.height());
+                    return;
+                }
                 const int s = g.s, stride = region.width() * s;
                 std::vector<S>& buf = grid_scratch_for_this_thread<S>();
                 Counters c{};
+                PixelProgress::Item<Counters> tick{progress, c};
                 buf.resize(static_cast<size_t>(stride) * region.height() * s);
                 for (int j = region.y0; j < region.y1; ++j) {
                     for (int i = region.x0; i < region.x1; ++i) {
@@ -350,34 +481,83 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                                 }
                             }
                         }
+                        if (inside) tick.pixel();
                     }
                 }
                 counters[t] = c;
                 filter_tile(g, tile, region, buf.data(), out);
-                report();
+                keep(t, [&](std::string& o) {
+                    append_raw(o, counters[t]);
+                    append_raw(o, counts[t]);
+                    append_rect(o, out, tile);
+                });
             });
             break;
         }
         case AaMode::adaptive: {
             // Pass 1: one sample at every pixel corner, each computed once.
             std::vector<S> corners(static_cast<size_t>(width + 1) * (height + 1));
-            parallel_items(control.threads, tile_count, [&](size_t t) {
+            parallel_items(control.threads, tile_count, [&](size_t item) {
                 if (cancelled()) return;
+                const size_t t = order[item];
                 const PixelRect r = corner_rect(tile_of(t), width, height);
+                const auto corner_row = [&](int y) {
+                    return corners.data() + static_cast<size_t>(y) * (width + 1) + r.x0;
+                };
+                const PixelRect px = tile_of(t);
+                if (restored(t, [&](std::string_view& in) {
+                        read_raw(in, counters[t]);
+                        read_raw(in, counts[t]);
+                        for (int y = r.y0; y < r.y1; ++y)
+                            for (int x = 0; x < r.width(); ++x) read_raw(in, corner_row(y)[x]);
+                    })) {
+                    progress.add(static_cast<uint64_t>(px.width()) * px.height());
+                    return;
+                }
                 Counters c{};
-                for (int y = r.y0; y < r.y1; ++y)
-                    for (int x = r.x0; x < r.x1; ++x)
-                        corners[static_cast<size_t>(y) * (width + 1) + x] =
-                            colour(static_cast<float>(x), static_cast<float>(y), c);
+                {
+                    PixelProgress::Item<Counters> tick{progress, c};
+                    for (int y = r.y0; y < r.y1; ++y) {
+                        for (int x = r.x0; x < r.x1; ++x) {
+                            corners[static_cast<size_t>(y) * (width + 1) + x] =
+                                colour(static_cast<float>(x), static_cast<float>(y), c);
+                            // the tile's pixels: its corners less the image's last row/column
+                            if (x < width && y < height) tick.pixel();
+                        }
+                    }
+                }
                 counters[t] = c;
                 counts[t].samples = static_cast<uint64_t>(r.width()) * r.height();
-                report();
+                keep(t, [&](std::string& o) {
+                    append_raw(o, counters[t]);
+                    append_raw(o, counts[t]);
+                    for (int y = r.y0; y < r.y1; ++y)
+                        for (int x = 0; x < r.width(); ++x) append_raw(o, corner_row(y)[x]);
+                });
             });
             // Pass 2: refine the pixels whose corners differ.
             const AdaptiveSpec spec = AdaptiveSpec::from(aa, width, height);
             const float inv_S = 1.0f / static_cast<float>(spec.lattice());
-            parallel_items(control.threads, tile_count, [&](size_t t) {
+            parallel_items(control.threads, tile_count, [&](size_t item) {
                 if (cancelled()) return;
+                const size_t t = order[item];
+                const size_t k = tile_count + t;
+                const PixelRect r = tile_of(t);
+                const auto mask_levels = [&](auto&& each) {  // the mask's bytes of the tile
+                    if (!mask) return;
+                    for (int y = r.y0; y < r.y1; ++y)
+                        for (int x = r.x0; x < r.x1; ++x)
+                            each(mask->level[static_cast<size_t>(y) * width + x]);
+                };
+                if (restored(k, [&](std::string_view& in) {
+                        read_raw(in, counters[k]);
+                        read_raw(in, counts[k]);
+                        read_rect(in, out, r);
+                        mask_levels([&](uint8_t& v) { read_raw(in, v); });
+                    })) {
+                    progress.add(static_cast<uint64_t>(r.width()) * r.height());
+                    return;
+                }
                 Counters c{};
                 struct Fine {
                     Colour& fn;
@@ -390,10 +570,18 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                     }
                 };
                 Fine fine{colour, c, inv_S};
-                refine_tile(spec, tile_of(t), corners.data(), fine, out, mask,
-                            counts[tile_count + t]);
-                counters[tile_count + t] = c;
-                report();
+                {
+                    PixelProgress::Item<Counters> tick{progress, c};
+                    refine_tile(spec, r, corners.data(), fine, out, mask, counts[k],
+                                [&tick] { tick.pixel(); });
+                }
+                counters[k] = c;
+                keep(k, [&](std::string& o) {
+                    append_raw(o, counters[k]);
+                    append_raw(o, counts[k]);
+                    append_rect(o, out, r);
+                    mask_levels([&](uint8_t& v) { append_raw(o, v); });
+                });
             });
             break;
         }

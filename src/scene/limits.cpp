@@ -33,6 +33,7 @@ std::vector<KeyLimit> build_table() {
         {"camera.view_height", real, above(0, 1e-3, 1e4)},
         {"camera.fov_y", real, strictly_between(0, 180, 1, 170)},
         {"render.max_depth", integer, closed(0, 64)},
+        {"render.min_weight", real, closed(0, 1)},
         {"render.tessellation", integer, closed(3, 4096)},
         {"render.antialias.samples", integer, closed(1, 256)},  // and a perfect square
         {"render.antialias.threshold", real, at_least(0, 1)},

@@ -53,6 +53,9 @@ struct RenderDesc {
     Model model = Model::phong;
     int max_depth = 5;
     bool tree_attenuation = false;
+    /// A secondary ray whose weight (the product of the reflection and transparency
+    /// coefficients on its path from the camera) is below this is not traced (SPEC §2).
+    float min_weight = 0;
     AntialiasDesc antialias;
 };
 

@@ -97,6 +97,7 @@ std::string scene_to_json(const SceneDesc& d, const std::string& out_dir) {
                                                                   : "raytrace"},
                    {"model", r.model == Model::lambert ? "lambert" : "phong"},
                    {"max_depth", r.max_depth},
+                   {"min_weight", num(r.min_weight)},
                    {"tree_attenuation", r.tree_attenuation},
                    {"tessellation", d.geometry.tessellation},
                    {"accel", d.geometry.accel == Accel::none ? "none" : "bvh"},

@@ -83,8 +83,8 @@ void read_samples(const Section& a, int& samples) {
 
 void read_render(const Json& j, RenderDesc& render, GeometryDesc& geometry) {
     const Section s(j, "render",
-                    {"pipeline", "model", "max_depth", "tree_attenuation", "tessellation", "accel",
-                     "antialias"},
+                    {"pipeline", "model", "max_depth", "min_weight", "tree_attenuation",
+                     "tessellation", "accel", "antialias"},
                     "render");
     s.enumeration("pipeline", render.pipeline,
                   {{"zbuffer", Pipeline::zbuffer},
@@ -92,6 +92,7 @@ void read_render(const Json& j, RenderDesc& render, GeometryDesc& geometry) {
                    {"raytrace", Pipeline::raytrace}});
     s.enumeration("model", render.model, {{"lambert", Model::lambert}, {"phong", Model::phong}});
     s.integer("max_depth", render.max_depth);
+    s.number("min_weight", render.min_weight);
     s.boolean("tree_attenuation", render.tree_attenuation);
     s.integer("tessellation", geometry.tessellation);
     s.enumeration("accel", geometry.accel, {{"bvh", Accel::bvh}, {"none", Accel::none}});

@@ -78,6 +78,7 @@ bool render_section(SceneDesc& d) {
     changed |= edit_enum("pipeline", r.pipeline, {"zbuffer", "raycast", "raytrace"});
     changed |= edit_enum("model", r.model, {"lambert", "phong"});
     changed |= slider_int(PanelSlider::max_depth, r.max_depth);
+    changed |= slider_float(PanelSlider::min_weight, r.min_weight);
     changed |= ImGui::Checkbox("tree attenuation", &r.tree_attenuation);
     changed |= slider_int(PanelSlider::tessellation, d.geometry.tessellation);
     changed |= edit_enum("accel", d.geometry.accel, {"bvh", "none"});

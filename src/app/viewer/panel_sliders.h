@@ -11,6 +11,7 @@ namespace luz {
 /// The sliders of panel.cpp, one entry each in kPanelSliders.
 enum class PanelSlider {
     max_depth,
+    min_weight,
     tessellation,
     samples,
     threshold,
@@ -37,6 +38,7 @@ struct PanelSliderSpec {
 /// Every slider of the panel, in PanelSlider order.
 inline constexpr PanelSliderSpec kPanelSliders[] = {
     {PanelSlider::max_depth, "max depth", "render.max_depth"},
+    {PanelSlider::min_weight, "min weight", "render.min_weight"},
     {PanelSlider::tessellation, "tessellation", "render.tessellation"},
     {PanelSlider::samples, "samples (s², s =)", "render.antialias.samples"},
     {PanelSlider::threshold, "threshold", "render.antialias.threshold"},

@@ -1,0 +1,126 @@
+// --checkpoint FILE: an interrupted render keeps its finished tiles; reruns continue and end with
+// the bits of an uninterrupted render (interrupted at random moments, several times in a row);
+// the file is removed after success; a file of another render, a damaged one or not a
+// checkpoint is refused with exit 2, the output untouched and the file left as it was.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <random>
+#include <thread>
+
+#include "cli/run_luz.h"
+
+namespace luz::test {
+namespace {
+
+class Checkpoint : public TempDirTest {};
+
+/// Runs luz with `args` in `cwd`; sends SIGINT after `ms` milliseconds (unless it ended);
+/// returns the exit status.
+int run_and_interrupt(const std::vector<std::string>& args, const std::filesystem::path& cwd,
+                      int ms) {
+    std::string binary = LUZ_BINARY;
+    std::vector<char*> argv{binary.data()};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    const pid_t pid = fork();
+    if (pid == 0) {
+        if (chdir(cwd.c_str()) != 0) _exit(126);
+        freopen("/dev/null", "w", stderr);
+        freopen("/dev/null", "w", stdout);
+        execv(binary.c_str(), argv.data());
+        _exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(ms));
+    kill(pid, SIGINT);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// About 2 s on two threads: long enough to be interrupted several times.
+std::vector<std::string> render_args(const std::string& out, const std::string& aa) {
+    return {"render",  "demo:whitted", "--width", "640", "--height", "480",          "--aa",
+            aa,        "--samples",    "9",       "-o",  out,        "--checkpoint", "render.ckpt",
+            "--stats", "stats.json"};
+}
+
+void resume_until_done(const std::filesystem::path& dir, const std::string& aa, std::mt19937& rng) {
+    const std::vector<std::string> args = render_args("resumed.png", aa);
+    int interrupted = 0;
+    for (int run = 0; run < 40; ++run) {
+        const int ms = std::uniform_int_distribution<int>(250, 600)(rng);
+        const int status = run_and_interrupt(args, dir, ms);
+        if (status == 0) break;
+        ASSERT_EQ(status, 130);
+        // Kept when interrupted (unless the very first run was stopped before rendering).
+        if (interrupted > 0) {
+            ASSERT_TRUE(std::filesystem::exists(dir / "render.ckpt")) << "kept when interrupted";
+        }
+        ASSERT_FALSE(std::filesystem::exists(dir / "resumed.png"));
+        ++interrupted;
+    }
+    EXPECT_GE(interrupted, 2) << "interrupted at least twice before it finished";
+    ASSERT_TRUE(std::filesystem::exists(dir / "resumed.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "render.ckpt")) << "removed after success";
+}
+
+TEST_F(Checkpoint, ResumedRendersEndWithTheBitsOfAnUninterruptedOne) {
+    std::mt19937 rng(12345);
+    for (const std::string aa : {"grid", "adaptive"}) {
+        std::vector<std::string> plain = render_args("plain.png", aa);
+        plain.resize(plain.size() - 4);  // no --checkpoint, no --stats
+        plain.push_back("-q");
+        const RunResult r = run_luz(plain, dir_);
+        ASSERT_EQ(r.status, 0) << r.err;
+        resume_until_done(dir_, aa, rng);
+        EXPECT_EQ(read_file(dir_ / "resumed.png"), read_file(dir_ / "plain.png")) << aa;
+        std::filesystem::remove(dir_ / "resumed.png");
+    }
+}
+
+TEST_F(Checkpoint, AnotherRendersFileIsRefusedAndLeftAsItWas) {
+    ASSERT_EQ(run_and_interrupt(render_args("out.png", "grid"), dir_, 900), 130);
+    const std::string saved = read_file(dir_ / "render.ckpt");
+    write_file(dir_ / "other.png", "the previous picture");
+    std::vector<std::string> other = render_args("other.png", "grid");
+    other.push_back("--set");
+    other.push_back("materials.mirror.reflection=0.5");
+    const RunResult r = run_luz(other, dir_);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err,
+              "render.ckpt: --checkpoint: made for another scene or other options (render again "
+              "without it, or remove the file)\n");
+    EXPECT_EQ(read_file(dir_ / "render.ckpt"), saved);
+    EXPECT_EQ(read_file(dir_ / "other.png"), "the previous picture");
+}
+
+TEST_F(Checkpoint, DamagedOrForeignFilesAreRefused) {
+    ASSERT_EQ(run_and_interrupt(render_args("out.png", "grid"), dir_, 900), 130);
+    const std::string saved = read_file(dir_ / "render.ckpt");
+    ASSERT_GT(saved.size(), 100u);
+    struct Case {
+        std::string bytes, message;
+    };
+    std::string other_version = saved;
+    other_version[8] = 7;
+    const std::vector<Case> cases = {
+        {saved.substr(0, saved.size() - 20), "truncated or damaged checkpoint"},
+        {"P6\n1 1\n255\nabc", "not a luz checkpoint"},
+        {other_version, "checkpoint of version 7, this luz writes 1"},
+    };
+    for (const Case& c : cases) {
+        write_file(dir_ / "render.ckpt", c.bytes);
+        const RunResult r = run_luz(render_args("out.png", "grid"), dir_);
+        EXPECT_EQ(r.status, 2) << c.message;
+        EXPECT_EQ(r.err, "render.ckpt: --checkpoint: " + c.message + "\n");
+        EXPECT_EQ(read_file(dir_ / "render.ckpt"), c.bytes) << "left as it was";
+        EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png"));
+    }
+}
+
+}  // namespace
+}  // namespace luz::test

@@ -1,0 +1,90 @@
+// Heavy scenes (scenes/exploding_glass.json: the ray tree grows as 2^depth, seconds a pixel):
+// Ctrl-C ends luz within a second however long one pixel takes, the progress bar moves before
+// the first tile is done, and luz says once that the tree explodes, naming render.min_weight.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <regex>
+#include <thread>
+
+#include "cli/run_luz.h"
+
+namespace luz::test {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+const std::string kScene = LUZ_SOURCE_DIR "/scenes/exploding_glass.json";
+
+class HeavyScene : public TempDirTest {};
+
+TEST_F(HeavyScene, SigintStopsAnExplodingRayTreeWithinASecond) {
+    std::string binary = LUZ_BINARY;
+    const std::vector<std::string> args = {binary, "render", kScene, "-o", "out.png", "-q"};
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    const pid_t pid = fork();
+    if (pid == 0) {
+        if (chdir(dir_.c_str()) != 0) _exit(126);
+        freopen("/dev/null", "w", stderr);
+        execv(binary.c_str(), argv.data());
+        _exit(127);
+    }
+    // Long enough for both threads to be deep inside exploding pixels (one takes seconds).
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    const auto sent = Clock::now();
+    kill(pid, SIGINT);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    const double seconds = std::chrono::duration<double>(Clock::now() - sent).count();
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130);
+    EXPECT_LT(seconds, 1.0) << "took " << seconds << " s";
+    EXPECT_TRUE(list_dir(dir_).empty());
+    RecordProperty("interrupt_seconds", std::to_string(seconds));
+}
+
+TEST_F(HeavyScene, ProgressMovesWithinATileAndTheExplosionIsNamedOnce) {
+    // One 16×16 tile: progress by finished tiles would show only 0 % and 100 %.
+    const RunResult r = run_luz_on_terminal({"render", kScene, "--width", "16", "--height", "16",
+                                             "--set", "render.max_depth=13", "-o", "out.png"},
+                                            dir_);
+    ASSERT_EQ(r.status, 0) << r.out;
+    std::vector<int> percents;
+    const std::regex bar(R"(\] +([0-9]+)%)");
+    for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), bar);
+         it != std::sregex_iterator(); ++it)
+        percents.push_back(std::stoi((*it)[1]));
+    ASSERT_GE(percents.size(), 4u) << r.out;
+    int between = 0;
+    for (size_t k = 0; k < percents.size(); ++k) {
+        between += percents[k] > 0 && percents[k] < 100;
+        if (k) {
+            EXPECT_GE(percents[k], percents[k - 1]) << r.out;
+        }
+    }
+    EXPECT_GE(between, 3) << r.out;
+    // Said once, naming the key to set and max_depth.
+    const std::string warning = "luz: warning: a sample traced ";
+    const size_t at = r.out.find(warning);
+    ASSERT_NE(at, std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find(warning, at + 1), std::string::npos) << "said once";
+    EXPECT_NE(r.out.find("render.min_weight", at), std::string::npos);
+    EXPECT_NE(r.out.find("render.max_depth 13", at), std::string::npos);
+}
+
+TEST_F(HeavyScene, MinWeightMakesItCheapAndQuiet) {
+    const auto start = Clock::now();
+    const RunResult r = run_luz({"render", kScene, "--width", "64", "--height", "48", "--set",
+                                 "render.min_weight=0.05", "-o", "out.png", "-q"},
+                                dir_);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "") << "no warning once min_weight is set";
+    EXPECT_LT(std::chrono::duration<double>(Clock::now() - start).count(), 30.0);
+}
+
+}  // namespace
+}  // namespace luz::test
