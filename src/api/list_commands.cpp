@@ -33,8 +33,9 @@ static std::string rgb_text(const Rgb& c) {
 
 void print_materials(std::FILE* out) {
     // rows of text first, so that every column is as wide as its widest cell
-    std::vector<std::vector<std::string>> rows = {
-        {"name", "alias", "ka", "kd", "ks", "n", "reflection", "transparency", "ior"}};
+    std::vector<std::vector<std::string>> rows = {{"name", "alias", "ka", "kd", "ks", "n",
+                                                   "reflection", "transparency", "ior",
+                                                   "reflectance"}};
     auto num = [](float v) {
         char buf[32];
         std::snprintf(buf, sizeof buf, "%g", v);
@@ -44,7 +45,8 @@ void print_materials(std::FILE* out) {
         const Material& m = p.material;
         rows.push_back({std::string(p.name), std::string(p.alias), rgb_text(m.ka), rgb_text(m.kd),
                         rgb_text(m.ks), num(m.n), num(m.reflection), num(m.transparency),
-                        num(m.ior)});
+                        num(m.ior),
+                        m.reflectance == Reflectance::schlick ? "schlick" : "constant"});
     }
     std::vector<size_t> width(rows[0].size(), 0);
     for (const auto& row : rows) {

@@ -8,7 +8,8 @@ namespace luz {
 /// One line per built-in scene: "demo:NAME  description".
 void print_scenes(std::FILE* out);
 
-/// A table of the presets: name, alias, ka, kd, ks, n, reflection, transparency, ior.
+/// A table of the presets: name, alias, ka, kd, ks, n, reflection, transparency, ior,
+/// reflectance (constant or schlick, SPEC §1.4).
 void print_materials(std::FILE* out);
 
 }  // namespace luz

@@ -70,11 +70,13 @@ constexpr std::string_view kWhitted = R"json({
   ]
 })json";
 
-// The eight presets side by side, as spheres in two rows over a grey floor, ray traced so the
-// metal reflects and the water and glass refract: the picture behind `luz materials`.
+// The eleven presets side by side, as spheres over a grey floor, ray traced so the metals
+// reflect and the water and glass refract: the picture behind `luz materials`. The lecture's
+// eight in two rows; behind them, between their spheres, the three metals whose w(i, λ) is
+// Schlick's curve (SPEC §1.4).
 constexpr std::string_view kMaterials = R"json({
   "image":  { "width": 800, "height": 400, "background": [0.3, 0.4, 0.55] },
-  "camera": { "projection": "perspective", "position": [0, 5, 8.5], "look_at": [0, 0.4, 0.1],
+  "camera": { "projection": "perspective", "position": [0, 5, 8.5], "look_at": [0, 0.4, -0.6],
               "up": [0, 1, 0], "fov_y": 32 },
   "render": { "pipeline": "raytrace", "model": "phong", "max_depth": 5 },
   "lights": [
@@ -94,7 +96,10 @@ constexpr std::string_view kMaterials = R"json({
     { "type": "sphere", "center": [-3.3, 0.7, 1.3], "radius": 0.7, "material": "plastico" },
     { "type": "sphere", "center": [-1.1, 0.7, 1.3], "radius": 0.7, "material": "metal_polido" },
     { "type": "sphere", "center": [1.1, 0.7, 1.3], "radius": 0.7, "material": "agua" },
-    { "type": "sphere", "center": [3.3, 0.7, 1.3], "radius": 0.7, "material": "vidro" }
+    { "type": "sphere", "center": [3.3, 0.7, 1.3], "radius": 0.7, "material": "vidro" },
+    { "type": "sphere", "center": [-2.2, 0.7, -4.3], "radius": 0.7, "material": "ouro" },
+    { "type": "sphere", "center": [0, 0.7, -4.3], "radius": 0.7, "material": "prata" },
+    { "type": "sphere", "center": [2.2, 0.7, -4.3], "radius": 0.7, "material": "cobre" }
   ]
 })json";
 
@@ -141,8 +146,9 @@ constexpr DemoScene kDemos[] = {
      kPrimitives},
     {"whitted", "Whitted's mirror and glass spheres over a checkered floor (raytrace)", kWhitted},
     {"materials",
-     "the eight presets as spheres: gesso, madeira, concreto, cortica (back); plastico, "
-     "metal_polido, agua, vidro (front) (raytrace)",
+     "the eleven presets as spheres: ouro, prata, cobre (back, Schlick's reflectance); gesso, "
+     "madeira, concreto, cortica (middle); plastico, metal_polido, agua, vidro (front) "
+     "(raytrace)",
      kMaterials},
     {"bunny",
      "the Stanford bunny in glass among the primitives and a metal sphere (raytrace, a mesh)",

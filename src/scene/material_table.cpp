@@ -16,9 +16,10 @@ std::string preset_names() {
 
 /// A material object: optionally `preset` first, then the constants it overrides.
 Material read_material(const Json& j, const std::string& path) {
-    const Section s(
-        j, path, {"preset", "ka", "kd", "ks", "n", "reflection", "transparency", "ior", "checker"},
-        "materials.*");
+    const Section s(j, path,
+                    {"preset", "ka", "kd", "ks", "n", "reflection", "transparency", "ior",
+                     "reflectance", "checker"},
+                    "materials.*");
     Material m;
     if (const Json* p = s.get("preset")) {
         const std::string name = read_string(*p, s.key("preset"));
@@ -36,6 +37,8 @@ Material read_material(const Json& j, const std::string& path) {
     s.number("reflection", m.reflection);
     s.number("transparency", m.transparency);
     s.number("ior", m.ior);
+    s.enumeration("reflectance", m.reflectance,
+                  {{"constant", Reflectance::constant}, {"schlick", Reflectance::schlick}});
     if (const Json* cj = s.get("checker")) {
         Checker c;
         const Section cs(*cj, s.key("checker"), {"size", "ka", "kd"}, "materials.*.checker");

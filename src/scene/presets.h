@@ -1,4 +1,5 @@
-// Material presets of the lecture: Portuguese names with English aliases (SPEC §2).
+// Material presets of the lecture and three metals: Portuguese names with English aliases
+// (SPEC §2, §1.4).
 #pragma once
 
 #include <span>
@@ -15,7 +16,7 @@ struct Preset {
     Material material;
 };
 
-/// All eight presets, in the lecture's order.
+/// All eleven presets: the lecture's eight in its order, then ouro, prata and cobre.
 std::span<const Preset> presets();
 
 /// The preset called `name` (either name), or nullptr.

@@ -37,6 +37,7 @@ Json material_json(const Material& m) {
     j["reflection"] = num(m.reflection);
     j["transparency"] = num(m.transparency);
     j["ior"] = num(m.ior);
+    j["reflectance"] = m.reflectance == Reflectance::schlick ? "schlick" : "constant";
     if (m.checker) {
         j["checker"] = {
             {"size", num(m.checker->size)}, {"ka", vec(m.checker->ka)}, {"kd", vec(m.checker->kd)}};

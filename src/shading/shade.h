@@ -11,6 +11,7 @@
 #include "math/vec3.h"
 #include "scene/material.h"
 #include "scene/scene_desc.h"
+#include "shading/reflectance.h"
 
 namespace luz {
 
@@ -106,9 +107,10 @@ inline Rgb shade(const ShadingPoint& p, const Lighting& lighting, Visibility&& v
                     t.cos_alpha = R_dot_S > 0 ? R_dot_S : 0.0f;
                     const Rgb Il_att = light.intensity * (vis / (d + lighting.K));
                     diffuse = Il_att * c.kd * t.cos_theta;
-                    // Ks·cosα^n (a surface without Ks needs no power)
-                    if (max_component(m.ks) > 0) {
-                        specular = Il_att * m.ks * phong_power(t.cos_alpha, m.n);
+                    // w(θ_j)·cosα^n, w = Ks or Schlick's curve (SPEC §1.4); w = 0 needs no power
+                    const Rgb w = specular_reflectance(m, t.cos_theta);
+                    if (max_component(w) > 0) {
+                        specular = Il_att * w * phong_power(t.cos_alpha, m.n);
                     }
                 }
             };

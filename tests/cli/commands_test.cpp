@@ -31,8 +31,8 @@ TEST_F(Commands, MaterialsListsEveryPresetWithItsConstants) {
     const RunResult r = run_luz({"materials"}, dir_);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(count_lines(r.out), 1 + static_cast<int>(presets().size()));
-    for (const char* column :
-         {"name", "alias", "ka", "kd", "ks", "n", "reflection", "transparency", "ior"}) {
+    for (const char* column : {"name", "alias", "ka", "kd", "ks", "n", "reflection", "transparency",
+                               "ior", "reflectance"}) {
         EXPECT_NE(r.out.find(column), std::string::npos) << column;
     }
     for (const Preset& p : presets()) {
@@ -43,11 +43,34 @@ TEST_F(Commands, MaterialsListsEveryPresetWithItsConstants) {
         char ior[32];
         std::snprintf(ior, sizeof ior, "%g", p.material.ior);
         EXPECT_NE(line.find(ior), std::string::npos) << line;
+        // the reflectance curve, last (SPEC §1.4)
+        const bool schlick = p.material.reflectance == Reflectance::schlick;
+        EXPECT_TRUE(line.ends_with(schlick ? " schlick" : " constant")) << line;
     }
-    for (const char* name :
-         {"gesso", "madeira", "concreto", "cortica", "plastico", "metal_polido", "agua", "vidro"}) {
+    for (const char* name : {"gesso", "madeira", "concreto", "cortica", "plastico", "metal_polido",
+                             "agua", "vidro", "ouro", "prata", "cobre"}) {
         EXPECT_NE(r.out.find(name), std::string::npos) << name;
     }
+}
+
+TEST_F(Commands, MaterialsListsTheMetalsWithTheirMeasuredKsAndSchlick) {
+    const RunResult r = run_luz({"materials"}, dir_);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto line_of = [&](const std::string& name) {
+        const size_t at = r.out.find("\n" + name + " ");
+        if (at == std::string::npos) return std::string();
+        return r.out.substr(at + 1, r.out.find('\n', at + 1) - at - 1);
+    };
+    EXPECT_NE(line_of("ouro").find(" gold "), std::string::npos) << r.out;
+    EXPECT_NE(line_of("prata").find(" silver "), std::string::npos) << r.out;
+    EXPECT_NE(line_of("cobre").find(" copper "), std::string::npos) << r.out;
+    EXPECT_NE(line_of("ouro").find(" 1,0.71,0.29 "), std::string::npos) << line_of("ouro");
+    EXPECT_NE(line_of("prata").find(" 0.95,0.93,0.88 "), std::string::npos) << line_of("prata");
+    EXPECT_NE(line_of("cobre").find(" 0.95,0.64,0.54 "), std::string::npos) << line_of("cobre");
+    for (const char* metal : {"ouro", "prata", "cobre"}) {
+        EXPECT_TRUE(line_of(metal).ends_with(" schlick")) << line_of(metal);
+    }
+    EXPECT_TRUE(line_of("metal_polido").ends_with(" constant")) << line_of("metal_polido");
 }
 
 TEST_F(Commands, VersionPrintsNameAndVersion) {

@@ -197,6 +197,29 @@ TEST(RayTree, ReflectionAddsTheMirroredColourAndMaxDepthCutsIt) {
     }
 }
 
+TEST(RayTree, SchlickLeavesTheMirrorCoefficientAlone) {
+    // SPEC §1.4: `reflectance` changes the specular term only; `reflection` still scales the
+    // reflected ray by itself, at any angle of view (here 45°, where w(45°) would differ).
+    SceneDesc d = empty_scene();
+    d.render.model = Model::phong;
+    d.image.background = Rgb{0.2f, 0.4f, 0.6f};
+    Material mirror;  // Ka = 0.1, Kd = 0.45
+    mirror.ks = Rgb{0.04f};
+    mirror.n = 2000;  // no highlight 45° away from the mirror direction
+    mirror.reflection = 0.5f;
+    mirror.reflectance = Reflectance::schlick;
+    d.materials.push_back(mirror);
+    d.lights.push_back({Vec3{0, 10, 0}, Rgb{1.0f}, 0});
+    d.objects = {floor_plane(1)};
+    const BuiltScene scene = build_scene(d);
+    const RayTracer tracer(scene, d, true);
+    TraceCounters c;
+    float dist;
+    const Rgb seen = tracer.trace(Ray{{0, 1, 1}, normalize(Vec3{0, -1, -1})}, 0, c, dist);
+    // Ia·Ka + Il/(d+K)·Kd·cos 0 + reflection·background
+    expect_vec(seen, Rgb{0.1f + 0.45f / 11} + Rgb{0.2f, 0.4f, 0.6f} * 0.5f);
+}
+
 TEST(RayTree, TreeAttenuationDividesBySegmentLengthPlusK) {
     SceneDesc d = empty_scene();
     Material mirror;

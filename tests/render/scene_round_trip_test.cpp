@@ -69,8 +69,26 @@ TEST(SceneRoundTrip, EditedValuesTransformsAndSettings) {
         {"render.antialias.samples", "9"},
         {"objects.1.transform", R"({"scale": [1, 2, 0.5], "rotate": [10, 20, 30],
                                    "translate": [0.1, 0.2, 0.3]})"},
-        {"objects.2.material", R"({"preset": "vidro", "ior": 1.7})"}};
+        {"objects.2.material", R"({"preset": "vidro", "ior": 1.7})"},
+        {"materials.yellow.reflectance", "\"schlick\""}};
     expect_round_trip("demo:primitives", edits, t.path);
+}
+
+TEST(SceneRoundTrip, ReflectanceIsWrittenBack) {
+    // SPEC §1.4: a saved scene keeps each material's curve, the metal presets' schlick included.
+    TempFolder t;
+    const SceneDesc a =
+        load_scene("demo:materials", {{"materials.floor.reflectance", "\"schlick\""}});
+    const std::string saved = (t.path / "saved.json").string();
+    write_scene(saved, a);
+    const SceneDesc b = load_scene(saved);
+    ASSERT_EQ(a.materials.size(), b.materials.size());
+    int schlick = 0;
+    for (size_t i = 0; i < a.materials.size(); ++i) {
+        EXPECT_EQ(a.materials[i].reflectance, b.materials[i].reflectance) << a.materials[i].name;
+        schlick += b.materials[i].reflectance == Reflectance::schlick;
+    }
+    EXPECT_EQ(schlick, 4);  // the floor, ouro, prata and cobre
 }
 
 TEST(SceneRoundTrip, MeshFilesRelativeToTheSavedScene) {

@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
+#include "scene/presets.h"
 #include "scene/scene_loader.h"
 
 namespace luz {
@@ -137,6 +139,34 @@ TEST(DemoScenes, PrimitivesExposureByHand) {
             EXPECT_GT(max_component(I), 0.35f);       // its colour reads clearly
         }
     }
+}
+
+TEST(DemoScenes, MaterialsShowsEveryPresetInView) {
+    // demo:materials is the presets sheet: one sphere per preset (the lecture's eight and the
+    // three metals), each wholly inside the picture (SPEC §1.3's perspective camera).
+    const SceneDesc s = load_scene("demo:materials");
+    const CameraDesc& c = s.camera;
+    ASSERT_EQ(c.projection, Projection::perspective);
+    const Vec3 w = normalize(c.position - c.look_at);
+    const Vec3 u = normalize(cross(c.up, w));
+    const Vec3 v = cross(w, u);
+    const float tan_half = std::tan(c.fov_y * 3.14159265f / 360);
+    const float aspect = float(s.image.width) / float(s.image.height);
+    std::set<std::string> shown;
+    for (const ObjectDesc& o : s.objects) {
+        if (o.type != ShapeType::sphere) continue;
+        shown.insert(s.materials[o.material].name);
+        SCOPED_TRACE(o.path);
+        for (const Vec3 edge : {u, -u, v, -v}) {
+            const Vec3 d = o.center + edge * o.radius - c.position;
+            const float depth = -dot(d, w);
+            ASSERT_GT(depth, 0);
+            EXPECT_LT(std::abs(dot(d, u) / (depth * tan_half * aspect)), 0.98f);
+            EXPECT_LT(std::abs(dot(d, v) / (depth * tan_half)), 0.98f);
+        }
+    }
+    for (const Preset& p : presets()) EXPECT_EQ(shown.count(std::string(p.name)), 1u) << p.name;
+    EXPECT_EQ(shown.size(), presets().size());
 }
 
 }  // namespace

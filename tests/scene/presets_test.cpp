@@ -1,4 +1,5 @@
-// Tests of the material presets: all eight, in order, found by both names, constants in range.
+// Tests of the material presets: the lecture's eight and the three metals, in order, found by
+// both names, constants in range, the metals' measured Ks and Schlick's curve.
 #include "scene/presets.h"
 
 #include <gtest/gtest.h>
@@ -8,13 +9,14 @@
 namespace luz {
 namespace {
 
-TEST(Presets, AllEightInTheLecturesOrder) {
-    const char* names[][2] = {{"gesso", "plaster"},     {"madeira", "wood"},
-                              {"concreto", "concrete"}, {"cortica", "cork"},
-                              {"plastico", "plastic"},  {"metal_polido", "polished_metal"},
-                              {"agua", "still_water"},  {"vidro", "glass"}};
-    ASSERT_EQ(presets().size(), 8u);
-    for (std::size_t i = 0; i < 8; ++i) {
+TEST(Presets, TheLecturesEightInOrderThenTheThreeMetals) {
+    const char* names[][2] = {
+        {"gesso", "plaster"},    {"madeira", "wood"},     {"concreto", "concrete"},
+        {"cortica", "cork"},     {"plastico", "plastic"}, {"metal_polido", "polished_metal"},
+        {"agua", "still_water"}, {"vidro", "glass"},      {"ouro", "gold"},
+        {"prata", "silver"},     {"cobre", "copper"}};
+    ASSERT_EQ(presets().size(), 11u);
+    for (std::size_t i = 0; i < 11; ++i) {
         const Preset& p = presets()[i];
         EXPECT_EQ(p.name, names[i][0]);
         EXPECT_EQ(p.alias, names[i][1]);
@@ -26,6 +28,33 @@ TEST(Presets, AllEightInTheLecturesOrder) {
     }
     EXPECT_EQ(find_preset("marble"), nullptr);
     EXPECT_EQ(find_preset(""), nullptr);
+}
+
+TEST(Presets, MetalsUseSchlicksCurveFromMeasuredReflectance) {
+    // SPEC §1.4, §2: Ks = F(0°), linear RGB, from Hoffman's table (Real-Time Rendering 3rd
+    // ed.; see presets.cpp), with `reflectance: schlick` and a mirror.
+    const struct {
+        const char* name;
+        Rgb F0;
+    } metals[] = {{"ouro", {1.00f, 0.71f, 0.29f}},
+                  {"prata", {0.95f, 0.93f, 0.88f}},
+                  {"cobre", {0.95f, 0.64f, 0.54f}}};
+    for (const auto& metal : metals) {
+        const Material& m = find_preset(metal.name)->material;
+        SCOPED_TRACE(metal.name);
+        EXPECT_EQ(m.reflectance, Reflectance::schlick);
+        EXPECT_EQ(m.ks, metal.F0);
+        EXPECT_GE(m.reflection, 0.5f);  // polished: a mirror
+        EXPECT_EQ(m.transparency, 0.0f);
+        EXPECT_GE(m.n, 100.0f);  // a tight highlight
+        // the body colour follows the metal's own (gold: red > green > blue)
+        EXPECT_GE(m.kd.x, m.kd.y);
+        EXPECT_GE(m.kd.y, m.kd.z);
+    }
+    // The lecture's eight keep the constant Ks of its practical model.
+    for (std::size_t i = 0; i < 8; ++i) {
+        EXPECT_EQ(presets()[i].material.reflectance, Reflectance::constant) << presets()[i].name;
+    }
 }
 
 TEST(Presets, ConstantsInRangeAndAmbientIsADimDiffuse) {

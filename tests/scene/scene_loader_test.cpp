@@ -261,6 +261,43 @@ TEST(SceneLoader, MaterialFromPresetWithOverrides) {
     EXPECT_FLOAT_EQ(glass.transparency, 0.9f);
 }
 
+TEST(SceneLoader, ReflectanceIsConstantUnlessSchlick) {
+    // SPEC §1.4: `reflectance` per material, `constant` by default; the metal presets bring
+    // `schlick`, which a material may override like any constant.
+    const SceneDesc s = parse(R"({
+      "materials": { "plain": { "ks": 0.5 },
+                     "fresnel_like": { "ks": 0.04, "reflectance": "schlick" },
+                     "flat_gold": { "preset": "ouro", "reflectance": "constant" },
+                     "gold": { "preset": "gold" } },
+      "objects": [ { "type": "sphere", "material": "plain" },
+                   { "type": "sphere", "material": "fresnel_like" },
+                   { "type": "sphere", "material": "flat_gold" },
+                   { "type": "sphere", "material": "gold" },
+                   { "type": "sphere", "material": "cobre" },
+                   { "type": "sphere", "material": "glass" } ] })");
+    const auto curve = [&](int object) {
+        return s.materials[s.objects[object].material].reflectance;
+    };
+    EXPECT_EQ(s.materials[0].reflectance, Reflectance::constant);  // the default material
+    EXPECT_EQ(curve(0), Reflectance::constant);
+    EXPECT_EQ(curve(1), Reflectance::schlick);
+    EXPECT_EQ(curve(2), Reflectance::constant);
+    expect_vec(s.materials[s.objects[2].material].ks, {1.0f, 0.71f, 0.29f});  // the rest stays
+    EXPECT_EQ(curve(3), Reflectance::schlick);
+    EXPECT_EQ(curve(4), Reflectance::schlick);
+    EXPECT_EQ(curve(5), Reflectance::constant);
+}
+
+TEST(SceneLoader, SetChangesTheReflectance) {
+    const char* scene = R"({"materials": {"red": {"kd": [0.8, 0.1, 0.1]}},
+                            "objects": [{"type": "sphere", "material": "red"}]})";
+    EXPECT_EQ(parse(scene).materials[1].reflectance, Reflectance::constant);
+    for (const char* set :
+         {"materials.red.reflectance=\"schlick\"", "materials.red.reflectance=schlick"}) {
+        EXPECT_EQ(parse(scene, sets({set})).materials[1].reflectance, Reflectance::schlick) << set;
+    }
+}
+
 TEST(SceneLoader, CheckerIsParsed) {
     const SceneDesc s = parse(R"({
       "materials": { "floor": { "kd": 0.8, "checker": { "size": 0.5, "ka": [0.01, 0.02, 0.03],
@@ -604,9 +641,15 @@ const BadCase kBadCases[] = {
      {},
      "render.antialias.filter: unknown value \"gauss\" (allowed: box, tent)"},
     {R"({"objects": [{"type": "cube"}]})", {}, "objects.0.type: unknown value \"cube\""},
-    {R"({"objects": [{"type": "sphere", "material": "gold"}]})",
+    {R"({"objects": [{"type": "sphere", "material": "marble"}]})",
      {},
-     "objects.0.material: unknown material \"gold\""},
+     "objects.0.material: unknown material \"marble\""},
+    {R"({"materials": {"gold": {"reflectance": "fresnel"}}})",
+     {},
+     "materials.gold.reflectance: unknown value \"fresnel\" (allowed: constant, schlick)"},
+    {R"({"objects": [{"type": "sphere", "material": {"reflectance": true}}]})",
+     {},
+     "objects.0.material.reflectance: expected one of constant, schlick, got"},
     {R"({"materials": {"m": {"preset": "marble"}}})",
      {},
      "materials.m.preset: unknown preset \"marble\""},
@@ -639,6 +682,10 @@ const BadCase kBadCases[] = {
     {R"({"objects": [{"type": "sphere"}]})",
      {"objects.0.radius=abc"},
      "--set objects.0.radius=abc: expected a number, got string \"abc\""},
+    {R"({"materials": {"red": {"kd": 0.8}}})",
+     {"materials.red.reflectance=fresnel"},
+     "--set materials.red.reflectance=fresnel: unknown value \"fresnel\" (allowed: constant, "
+     "schlick)"},
     {R"({"objects": [{"type": "sphere"}]})",
      {"objects.0.radius=-2"},
      "--set objects.0.radius=-2: must be > 0, got -2"},

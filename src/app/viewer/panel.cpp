@@ -138,6 +138,8 @@ bool materials_section(SceneDesc& d) {
             changed |= slider_float(PanelSlider::reflection, m.reflection);
             changed |= slider_float(PanelSlider::transparency, m.transparency);
             changed |= slider_float(PanelSlider::ior, m.ior);
+            // w(i, λ) of the specular term (SPEC §1.4), in Reflectance's order
+            changed |= edit_enum("reflectance", m.reflectance, {"constant", "schlick"});
             if (m.checker) {
                 changed |= edit_unit_rgb("checker Ka", m.checker->ka);
                 changed |= edit_unit_rgb("checker Kd", m.checker->kd);
