@@ -1,7 +1,7 @@
 """The figure groups of `luz figures`, one module each, in the lecture's order."""
 
 from . import (antialias, assignment, bounding, colour, distance, global_models, lambert,
-               reflection, specular, speed, terms)
+               reflectance, reflection, specular, speed, terms)
 
 GROUPS = [
     ("diffuse_specular", reflection),
@@ -9,6 +9,7 @@ GROUPS = [
     ("distance", distance),
     ("specular", specular),
     ("terms", terms),
+    ("reflectance", reflectance),
     ("coloured_lights", colour),
     ("global", global_models),
     ("antialias", antialias),
