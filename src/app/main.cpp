@@ -6,6 +6,7 @@
 #include <string>
 
 #include "app/cli_options.h"
+#include "app/figures_command.h"
 #include "app/render_command.h"
 #include "app/signals.h"
 #include "app/view_command.h"
@@ -49,6 +50,10 @@ int run(int argc, char** argv) {
     luz::ViewOptions view_options;
     CLI::App* view = app.add_subcommand("view", "interactive window: edit the scene live");
     luz::add_view_options(*view, view_options);
+    luz::FiguresOptions figures_options;
+    CLI::App* figures = app.add_subcommand(
+        "figures", "regenerate the lecture's figures into a folder with index.html");
+    luz::add_figures_options(*figures, figures_options);
 
     // CLI11 would only say "A subcommand is required" for a misspelt command
     const auto is_command = [&](const std::string& name) {
@@ -58,8 +63,9 @@ int run(int argc, char** argv) {
         return false;
     };
     if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1])) {
-        print_error_line(std::string("luz: unknown command \"") + argv[1] +
-                         "\" (expected render, view, scenes or materials; see luz --help)");
+        print_error_line(
+            std::string("luz: unknown command \"") + argv[1] +
+            "\" (expected render, view, figures, scenes or materials; see luz --help)");
         return 2;
     }
     try {
@@ -79,6 +85,7 @@ int run(int argc, char** argv) {
         return 0;
     }
     if (*view) return luz::run_view(view_options);
+    if (*figures) return luz::run_figures(figures_options);
     return luz::run_render(render_options);
 }
 
