@@ -50,7 +50,7 @@ TEST_F(HeavyScene, SigintStopsAnExplodingRayTreeWithinASecond) {
 TEST_F(HeavyScene, ProgressMovesWithinATileAndTheExplosionIsNamedOnce) {
     // One 16×16 tile: progress by finished tiles would show only 0 % and 100 %.
     const RunResult r = run_luz_on_terminal({"render", kScene, "--width", "16", "--height", "16",
-                                             "--set", "render.max_depth=13", "-o", "out.png"},
+                                             "--set", "render.max_depth=16", "-o", "out.png"},
                                             dir_);
     ASSERT_EQ(r.status, 0) << r.out;
     std::vector<int> percents;
@@ -73,7 +73,7 @@ TEST_F(HeavyScene, ProgressMovesWithinATileAndTheExplosionIsNamedOnce) {
     ASSERT_NE(at, std::string::npos) << r.out;
     EXPECT_EQ(r.out.find(warning, at + 1), std::string::npos) << "said once";
     EXPECT_NE(r.out.find("render.min_weight", at), std::string::npos);
-    EXPECT_NE(r.out.find("render.max_depth 13", at), std::string::npos);
+    EXPECT_NE(r.out.find("render.max_depth 16", at), std::string::npos);
 }
 
 TEST_F(HeavyScene, MinWeightMakesItCheapAndQuiet) {
