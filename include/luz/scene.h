@@ -40,6 +40,10 @@ SceneDesc load_scene_value(const nlohmann::ordered_json& value, const std::strin
                            const std::string& base_dir,
                            const std::vector<Override>& overrides = {});
 
+/// `message` as one line, as every front end shows an error: trailing newlines dropped, inner
+/// ones made spaces, other control bytes (quoted from a bad file) shown as '?'.
+std::string one_line(const std::string& message);
+
 /// Parses one "PATH=JSON" as given to --set. Throws SceneError when malformed.
 Override parse_set(const std::string& arg);
 

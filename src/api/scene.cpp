@@ -83,4 +83,17 @@ SceneDesc load_scene_value(const nlohmann::ordered_json& value, const std::strin
     return parse_scene(value.dump(), label, base_dir, overrides);
 }
 
+std::string one_line(const std::string& message) {
+    std::string line = message;
+    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+    for (char& c : line) {
+        if (c == '\n' || c == '\r') {
+            c = ' ';
+        } else if (static_cast<unsigned char>(c) < 0x20 && c != '\t') {
+            c = '?';  // a NUL or control byte quoted from a bad file
+        }
+    }
+    return line;
+}
+
 }  // namespace luz

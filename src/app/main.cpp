@@ -20,15 +20,7 @@ namespace {
 
 /// Prints `message` on standard error as exactly one line.
 void print_error_line(const std::string& message) {
-    std::string line = message;
-    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
-    for (char& c : line) {
-        if (c == '\n' || c == '\r') {
-            c = ' ';
-        } else if (static_cast<unsigned char>(c) < 0x20 && c != '\t') {
-            c = '?';  // a NUL or control byte quoted from a bad file
-        }
-    }
+    std::string line = luz::one_line(message);
     line += '\n';
     std::fwrite(line.data(), 1, line.size(), stderr);
 }

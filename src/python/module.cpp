@@ -221,15 +221,7 @@ py::handle scene_error_type;
 /// Raises `type` with `message` as `luz` prints it (app/main.cpp): one line, control bytes
 /// quoted from a bad file shown as '?', bytes that are not UTF-8 replaced.
 void set_error(PyObject* type, const std::string& message) {
-    std::string line = message;
-    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
-    for (char& c : line) {
-        if (c == '\n' || c == '\r') {
-            c = ' ';
-        } else if (static_cast<unsigned char>(c) < 0x20 && c != '\t') {
-            c = '?';
-        }
-    }
+    const std::string line = one_line(message);
     PyObject* text =
         PyUnicode_DecodeUTF8(line.data(), static_cast<Py_ssize_t>(line.size()), "replace");
     if (!text) return;  // the decoding error stays set

@@ -30,28 +30,27 @@ void render_ray_traced(const BuiltScene& scene, const Settings& settings,
                         "that weigh little, or lower render.max_depth");
     };
     std::vector<TraceCounters> counters;
+    // Samples of `sample` (the colour, or the colour and its terms) into `into`.
+    auto run = [&](auto sample, auto& into) {
+        return sample_image(
+            settings.render.antialias, w, h, control,
+            [&](float x, float y, TraceCounters& c) {
+                const uint64_t before = work_of(c);
+                const auto s = sample(x, y, c);
+                watch_sample(before, c);
+                return s;
+            },
+            into, counters, control.aa_mask);
+    };
     SamplerCounts counts;
     if (control.terms && control.terms->any()) {  // the colour and its terms (SPEC §1.5)
         TermOut term_out{out, *control.terms};
-        counts = sample_image(
-            settings.render.antialias, w, h, control,
-            [&](float x, float y, TraceCounters& c) {
-                const uint64_t before = work_of(c);
-                const TermSample s = tracer.sample_terms(x, y, c);
-                watch_sample(before, c);
-                return s;
-            },
-            term_out, counters, control.aa_mask);
+        counts =
+            run([&](float x, float y, TraceCounters& c) { return tracer.sample_terms(x, y, c); },
+                term_out);
     } else {
-        counts = sample_image(
-            settings.render.antialias, w, h, control,
-            [&](float x, float y, TraceCounters& c) {
-                const uint64_t before = work_of(c);
-                const Rgb s = tracer.sample(x, y, c);
-                watch_sample(before, c);
-                return s;
-            },
-            out, counters, control.aa_mask);
+        counts =
+            run([&](float x, float y, TraceCounters& c) { return tracer.sample(x, y, c); }, out);
     }
     for (const TraceCounters& c : counters) {
         stats.rays_primary += c.primary;

@@ -41,10 +41,10 @@ int run_and_interrupt(const std::vector<std::string>& args, const std::filesyste
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-// About 2 s on two threads: long enough to be interrupted several times.
+// About 3 s on two threads of an idle machine: long enough to be interrupted several times.
 std::vector<std::string> render_args(const std::string& out, const std::string& aa) {
-    return {"render",  "demo:whitted", "--width", "640", "--height", "480",          "--aa",
-            aa,        "--samples",    "9",       "-o",  out,        "--checkpoint", "render.ckpt",
+    return {"render",  "demo:whitted", "--width", "1280", "--height", "960",          "--aa",
+            aa,        "--samples",    "9",       "-o",   out,        "--checkpoint", "render.ckpt",
             "--stats", "stats.json"};
 }
 
