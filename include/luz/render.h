@@ -53,7 +53,19 @@ struct RenderOptions {
     RenderControl control;
     bool want_aa_mask = false;  ///< fill Frame::aa_mask
     std::vector<AovKind> aovs;  ///< the per-term images to fill (parse_aov_list("all", …))
+    /// When not empty, only these pixels (X1, Y1 exclusive; `--region`, SPEC §3): the Frame is
+    /// region.width() × region.height(), its pixels bit for bit those of the same rectangle of
+    /// the whole render (antialiasing and its filters included). Check it with check_region().
+    PixelRect region;
 };
+
+/// Throws SceneError naming `what` (e.g. "--region 0,0,900,10", "region") when `region` is
+/// empty or not inside the `image`'s pixels.
+void check_region(const PixelRect& region, const ImageDesc& image, const std::string& what);
+
+/// Parses "X0,Y0,X1,Y1" (four integers) as given to --region; throws SceneError naming
+/// `--region TEXT` when it is not four integers, empty, or outside `image`.
+PixelRect parse_region(const std::string& text, const ImageDesc& image);
 
 /// Renders `scene` with `settings` (a SceneDesc is a Settings: pass it as it is, or an edited
 /// copy). Builds the scene's BVH first if this is its first ray-traced render. Throws

@@ -1,6 +1,7 @@
 // The public render() and ray_tree(): a built Scene with any Settings (include/luz/render.h).
 #include "luz/render.h"
 
+#include <algorithm>
 #include <string>
 
 #include "geometry/scene.h"
@@ -18,13 +19,78 @@ void check_fits(const Scene& scene, const Settings& settings) {
     }
 }
 
+/// The pixels of `region` of every image of the frame (the whole-size render's).
+void crop_frame(Frame& frame, const PixelRect& r, RenderStats& stats) {
+    frame.image = crop(frame.image, r.x0, r.y0, r.width(), r.height());
+    for (Aov& a : frame.aovs) a.image = crop(a.image, r.x0, r.y0, r.width(), r.height());
+    if (!frame.aa_mask.level.empty()) {
+        AaMask m{r.width(), r.height(), {}};
+        m.level.reserve(static_cast<size_t>(r.width()) * r.height());
+        for (int y = r.y0; y < r.y1; ++y) {
+            const auto row =
+                frame.aa_mask.level.begin() + static_cast<std::ptrdiff_t>(y) * frame.aa_mask.width;
+            m.level.insert(m.level.end(), row + r.x0, row + r.x1);
+        }
+        frame.aa_mask = std::move(m);
+    }
+    stats.width = r.width();
+    stats.height = r.height();
+    const int corners[4] = {r.x0, r.y0, r.x1, r.y1};
+    std::copy(corners, corners + 4, stats.region);
+}
+
+}  // namespace
+
+void check_region(const PixelRect& r, const ImageDesc& image, const std::string& what) {
+    if (r.empty()) {
+        throw SceneError(what + ": the region is empty (X1 must be greater than X0, Y1 than Y0)");
+    }
+    if (r.x0 < 0 || r.y0 < 0 || r.x1 > image.width || r.y1 > image.height) {
+        throw SceneError(what + ": outside the " + std::to_string(image.width) + "x" +
+                         std::to_string(image.height) + " image (X0,Y0 from 0,0; X1,Y1 up to " +
+                         std::to_string(image.width) + "," + std::to_string(image.height) + ")");
+    }
+}
+
+PixelRect parse_region(const std::string& text, const ImageDesc& image) {
+    const std::string what = "--region " + text;
+    int v[4];
+    size_t k = 0, at = 0;
+    for (; k < 4 && at <= text.size(); ++k) {
+        const size_t comma = std::min(text.find(',', at), text.size());
+        const std::string part = text.substr(at, comma - at);
+        const size_t digits = part.size() - (!part.empty() && part[0] == '-' ? 1 : 0);
+        if (digits == 0 || digits > 9 ||
+            !std::all_of(part.end() - static_cast<std::ptrdiff_t>(digits), part.end(),
+                         [](char c) { return c >= '0' && c <= '9'; })) {
+            break;
+        }
+        v[k] = std::stoi(part);
+        at = comma + 1;
+    }
+    if (k != 4 || at != text.size() + 1) {
+        throw SceneError(what + ": expected four integers X0,Y0,X1,Y1 (X1, Y1 exclusive)");
+    }
+    const PixelRect r{v[0], v[1], v[2], v[3]};
+    check_region(r, image, what);
+    return r;
+}
+
+namespace {
+
+/// Whether a region was asked for (all zeros: the whole image).
+bool has_region(const PixelRect& r) { return r.x0 || r.y0 || r.x1 || r.y1; }
+
 }  // namespace
 
 Frame render(const Scene& scene, const Settings& settings, const RenderOptions& options) {
     check_fits(scene, settings);
     scene.prepare(settings.render.pipeline);
+    const bool region = has_region(options.region);
+    if (region) check_region(options.region, settings.image, "region");
     Frame frame;
     RenderControl control = options.control;
+    control.region = options.region;
     control.aa_mask = options.want_aa_mask ? &frame.aa_mask : nullptr;
     // The per-term images asked for, each once, in the order asked; the pipelines fill them.
     TermPlanes planes;
@@ -32,14 +98,17 @@ Frame render(const Scene& scene, const Settings& settings, const RenderOptions& 
         bool seen = false;
         for (const Aov& a : frame.aovs) seen = seen || a.kind == kind;
         if (!seen) {
+            // A region's images are cut from whole-size ones whose other pixels are never read.
+            const int w = settings.image.width, h = settings.image.height;
             frame.aovs.push_back(
-                Aov{kind, aov_name(kind), Image(settings.image.width, settings.image.height)});
+                Aov{kind, aov_name(kind), region ? Image(w, h, Unwritten{}) : Image(w, h)});
         }
     }
     for (Aov& a : frame.aovs) planes.plane[static_cast<int>(a.kind)] = &a.image;
     control.terms = planes.any() ? &planes : nullptr;
     frame.image = render(scene.built(), settings, control, frame.stats);
     frame.complete = !(control.cancel && control.cancel->load());
+    if (region) crop_frame(frame, options.region, frame.stats);
     return frame;
 }
 

@@ -39,7 +39,7 @@ uint64_t peak_resident_bytes() {
 
 nlohmann::json stats_to_json(const RenderStats& s, const SceneDesc& desc) {
     using nlohmann::json;
-    return json{
+    nlohmann::json out = json{
         {"scene", desc.source},
         {"seconds", s.seconds},
         {"width", s.width},
@@ -72,6 +72,10 @@ nlohmann::json stats_to_json(const RenderStats& s, const SceneDesc& desc) {
               "(null: no rays traced)"}}},
         {"peak_memory_bytes", s.peak_memory_bytes},
     };
+    if (s.region[2] > 0) {  // --region: the rectangle, as given (width and height are its size)
+        out["region"] = json::array({s.region[0], s.region[1], s.region[2], s.region[3]});
+    }
+    return out;
 }
 
 std::string stats_json_text(const RenderStats& stats, const SceneDesc& desc) {

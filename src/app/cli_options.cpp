@@ -47,6 +47,10 @@ void add_render_options(CLI::App& cmd, RenderArgs& o) {
                    "again with the same scene, options and FILE to continue; removed once the "
                    "output is written")
         ->type_name("FILE");
+    cmd.add_option("--region", o.region,
+                   "render only the pixels X0 <= x < X1, Y0 <= y < Y1: an image X1-X0 by "
+                   "Y1-Y0 whose pixels are those of the same rectangle of the whole render")
+        ->type_name("X0,Y0,X1,Y1");
     cmd.add_flag("-q,--quiet", o.quiet, "print nothing on success, no progress bar");
     cmd.add_option("--set", o.sets,
                    "override any scene key by dotted path, e.g. materials.red.n=4 or "

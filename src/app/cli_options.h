@@ -20,12 +20,13 @@ struct RenderArgs {
     std::string scene;   ///< a file path or demo:NAME
     std::string output;  ///< empty: the scene's name + ".png"
     std::optional<std::string> pipeline, model, width, height, max_depth, aa, samples, threshold;
-    std::vector<std::string> sets;  ///< each "PATH=JSON", in the order given
-    int threads = 0;                ///< 0: all cores
-    std::string stats_file;         ///< empty: no statistics file
-    std::string aa_mask_file;       ///< empty: no image of the adaptively refined pixels
-    std::string aovs;               ///< --aov NAME[,NAME…] or all (SPEC §1.5)
-    std::string checkpoint;         ///< --checkpoint FILE: finished tiles kept there (SPEC §3)
+    std::vector<std::string> sets;      ///< each "PATH=JSON", in the order given
+    int threads = 0;                    ///< 0: all cores
+    std::string stats_file;             ///< empty: no statistics file
+    std::string aa_mask_file;           ///< empty: no image of the adaptively refined pixels
+    std::string aovs;                   ///< --aov NAME[,NAME…] or all (SPEC §1.5)
+    std::string checkpoint;             ///< --checkpoint FILE: finished tiles kept there (SPEC §3)
+    std::optional<std::string> region;  ///< --region X0,Y0,X1,Y1 as typed; unset: whole image
     bool quiet = false;
     std::optional<uint64_t> max_memory;  ///< bytes; default half of physical memory
 };

@@ -37,6 +37,7 @@ int run_render(const RenderArgs& o) {
     const std::string out = o.output.empty() ? desc.name + ".png" : o.output;
     if (o.output.empty()) check_output_path(out, "default output");
     check_memory(desc, o.max_memory, static_cast<int>(aovs.size()));
+    const PixelRect region = o.region ? parse_region(*o.region, desc.image) : PixelRect{};
 
     // 3. Build, then render with a progress bar on a terminal.
     const auto start = std::chrono::steady_clock::now();
@@ -47,6 +48,7 @@ int run_render(const RenderArgs& o) {
         std::string key = scene_to_json(desc, "/") + "\naovs";
         for (AovKind k : aovs) key += std::string(" ") + aov_name(k);
         key += o.aa_mask_file.empty() ? "\nno mask" : "\nmask";
+        if (o.region) key += "\nregion " + *o.region;
         checkpoint.emplace(o.checkpoint, fingerprint(key));
     }
     const Scene scene = build(desc);
@@ -55,6 +57,7 @@ int run_render(const RenderArgs& o) {
     options.control.threads = o.threads;
     options.want_aa_mask = !o.aa_mask_file.empty();
     options.aovs = aovs;
+    options.region = region;
     if (bar.enabled()) options.control.progress = [&bar](double f) { bar.update(f); };
     options.control.cancel = &interrupt_flag();
     if (checkpoint) options.control.checkpoint = &*checkpoint;

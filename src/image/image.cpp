@@ -1,6 +1,8 @@
 // Image pixel storage (image.h): large blocks on huge pages where the system offers them.
 #include "image/image.h"
 
+#include <algorithm>
+
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
@@ -21,6 +23,12 @@ void* allocate_pixels(size_t bytes) {
     }
     if (!p) throw std::bad_alloc();
     return p;
+}
+
+Image crop(const Image& img, int x0, int y0, int w, int h) {
+    Image out(w, h, Unwritten{});
+    for (int y = 0; y < h; ++y) std::copy_n(&img.at(x0, y0 + y), w, &out.at(0, y));
+    return out;
 }
 
 }  // namespace luz

@@ -54,6 +54,9 @@ struct Image {
 
 void* allocate_pixels(size_t bytes);  // image.cpp
 
+/// The w × h pixels of `img` whose top-left pixel is (x0, y0) (inside `img`).
+Image crop(const Image& img, int x0, int y0, int w, int h);
+
 template <class T>
 T* PixelAllocator<T>::allocate(size_t n) {
     if (n > static_cast<size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();

@@ -39,10 +39,7 @@ std::shared_ptr<FrameObject> render_py(py::handle scene, py::handle pipeline, py
     RenderOptions render_options;
     render_options.control.threads = static_cast<int>(int_argument(threads, "threads", 0, 4096));
     render_options.aovs = aov_argument(aov);
-    if (!region.is_none()) {
-        PyErr_SetString(PyExc_NotImplementedError, "region= needs render regions (issue 15)");
-        throw py::error_already_set();
-    }
+    render_options.region = region_argument(region);
     const bool callable = !PyBool_Check(progress.ptr()) && PyCallable_Check(progress.ptr());
     if (!PyBool_Check(progress.ptr()) && !callable && !progress.is_none()) {
         throw py::type_error(std::string("progress: expected a bool or a callable, got ") +
@@ -51,6 +48,7 @@ std::shared_ptr<FrameObject> render_py(py::handle scene, py::handle pipeline, py
 
     const auto start = std::chrono::steady_clock::now();
     const SceneRef resolved = resolve(scene, set, options);
+    check_region_argument(render_options.region, resolved->desc.image);
     py::object bar;  // progress: None, a luz._progress.Bar, or the caller's callable
     if (callable) {
         bar = py::reinterpret_borrow<py::object>(progress);
@@ -164,7 +162,8 @@ aov: per-term images to make too (SPEC 1.5): names among ambient, diffuse, specu
     reflected, refracted, emitted, shadow, depth, normal, tests, or "all"; a list or a
     comma-separated str. They are in Frame.aov.
 set: a dict {PATH: value} applied like --set, before the options above.
-region: not available yet (render regions are issue 15); only None is accepted.
+region: (x0, y0, x1, y1), x1 and y1 exclusive: renders only that rectangle, as --region; the
+    Frame is x1-x0 by y1-y0 and its pixels are those of the same rectangle of the whole render.
 progress: True draws a progress bar (tqdm when installed, else a line on sys.stderr); a
     callable is called with the fraction done (0..1) instead, from the calling thread.
 

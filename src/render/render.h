@@ -1,6 +1,7 @@
 // render(): a runtime scene through the pipeline it names, to a float image.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <functional>
 #include <string>
@@ -14,6 +15,20 @@ namespace luz {
 struct AaMask;
 struct TermPlanes;
 class Checkpoint;
+
+/// The pixels [x0, x1) × [y0, y1).
+struct PixelRect {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    int width() const { return x1 - x0; }
+    int height() const { return y1 - y0; }
+    bool empty() const { return x1 <= x0 || y1 <= y0; }
+    bool overlaps(const PixelRect& o) const {
+        return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1;
+    }
+    PixelRect clipped(const PixelRect& o) const {
+        return {std::max(x0, o.x0), std::max(y0, o.y0), std::min(x1, o.x1), std::min(y1, o.y1)};
+    }
+};
 
 /// How a render is run: threads, progress reports and cancellation.
 struct RenderControl {
@@ -33,6 +48,10 @@ struct RenderControl {
     /// When set, the ray pipelines keep finished tiles in it and skip those it already holds
     /// (render/checkpoint.h); the zbuffer renders every tile.
     Checkpoint* checkpoint = nullptr;
+    /// When not empty, only the tiles that hold these pixels are rendered (--region, SPEC §3):
+    /// its pixels are then those of the whole render, bit for bit; the image keeps the whole
+    /// size and its other pixels are left as they were (the ray pipelines: unwritten).
+    PixelRect region;
 };
 
 /// Renders `scene` with `settings` (image, camera, pipeline, lights, materials …); fills

@@ -42,13 +42,6 @@ struct SamplerCounts {
     }
 };
 
-/// The pixels [x0, x1) × [y0, y1).
-struct PixelRect {
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-    int width() const { return x1 - x0; }
-    int height() const { return y1 - y0; }
-};
-
 /// Side of the square tiles the samplers work in (pixels).
 inline constexpr int kSamplerTile = 16;
 
@@ -388,11 +381,28 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
         const int x0 = static_cast<int>(t % tiles_x) * T, y0 = static_cast<int>(t / tiles_x) * T;
         return PixelRect{x0, y0, std::min(width, x0 + T), std::min(height, y0 + T)};
     };
+    // --region: only the tiles that hold its pixels, each cut to it. A pixel's value does not
+    // depend on its tile (its samples, the tent's ring and its corners are computed where
+    // needed, at the same points), so the region's pixels are those of the whole render.
+    const PixelRect window = control.region.empty() ? PixelRect{0, 0, width, height}
+                                                    : control.region.clipped({0, 0, width, height});
+    auto tiles_within = [&](const PixelRect& within) {
+        std::vector<size_t> list;
+        for (size_t t : order)
+            if (tile_of(t).overlaps(within)) list.push_back(t);
+        return list;
+    };
+    const std::vector<size_t> tiles = tiles_within(window);
+    auto pixels_of = [&](size_t t) {
+        const PixelRect r = tile_of(t).clipped(window);
+        return r.empty() ? uint64_t{0} : static_cast<uint64_t>(r.width()) * r.height();
+    };
     auto cancelled = [&] {
         return control.cancel && control.cancel->load(std::memory_order_relaxed);
     };
     // Progress by pixels: adaptive counts each pixel in both passes.
-    PixelProgress progress(control, static_cast<uint64_t>(width) * height * (adaptive ? 2 : 1));
+    PixelProgress progress(
+        control, static_cast<uint64_t>(window.width()) * window.height() * (adaptive ? 2 : 1));
     // Checkpoint (--checkpoint): items finished by an earlier run are read back instead of
     // rendered; each item finished now is kept, unless the render was cancelled meanwhile.
     Checkpoint* const checkpoint = control.checkpoint;
@@ -413,16 +423,16 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
 
     switch (aa.mode) {
         case AaMode::none:
-            parallel_items(control.threads, tile_count, [&](size_t item) {
+            parallel_items(control.threads, tiles.size(), [&](size_t item) {
                 if (cancelled()) return;
-                const size_t t = order[item];
-                const PixelRect r = tile_of(t);
+                const size_t t = tiles[item];
+                const PixelRect r = tile_of(t).clipped(window);
                 if (restored(t, [&](std::string_view& in) {
                         read_raw(in, counters[t]);
                         read_raw(in, counts[t]);
                         read_rect(in, out, r);
                     })) {
-                    progress.add(static_cast<uint64_t>(r.width()) * r.height());
+                    progress.add(pixels_of(t));
                     return;
                 }
                 Counters c{};
@@ -446,16 +456,16 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
             break;
         case AaMode::grid: {
             const GridSpec g = GridSpec::from(aa, width, height);
-            parallel_items(control.threads, tile_count, [&](size_t item) {
+            parallel_items(control.threads, tiles.size(), [&](size_t item) {
                 if (cancelled()) return;
-                const size_t t = order[item];
-                const PixelRect tile = tile_of(t), region = g.region(tile);
+                const size_t t = tiles[item];
+                const PixelRect tile = tile_of(t).clipped(window), region = g.region(tile);
                 if (restored(t, [&](std::string_view& in) {
                         read_raw(in, counters[t]);
                         read_raw(in, counts[t]);
                         read_rect(in, out, tile);
                     })) {
-                    progress.add(static_cast<uint64_t>(tile.width()) * tile.height());
+                    progress.add(pixels_of(t));
                     return;
                 }
                 const int s = g.s, stride = region.width() * s;
@@ -496,22 +506,26 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
         }
         case AaMode::adaptive: {
             // Pass 1: one sample at every pixel corner, each computed once.
+            // A region's pixels need the corners [x0, x1] × [y0, y1]: the tiles of the region
+            // grown by one pixel to the right and below compute them.
             std::vector<S> corners(static_cast<size_t>(width + 1) * (height + 1));
-            parallel_items(control.threads, tile_count, [&](size_t item) {
+            const PixelRect grown{window.x0, window.y0, std::min(width, window.x1 + 1),
+                                  std::min(height, window.y1 + 1)};
+            const std::vector<size_t> corner_tiles = tiles_within(grown);
+            parallel_items(control.threads, corner_tiles.size(), [&](size_t item) {
                 if (cancelled()) return;
-                const size_t t = order[item];
-                const PixelRect r = corner_rect(tile_of(t), width, height);
+                const size_t t = corner_tiles[item];
+                const PixelRect r = corner_rect(tile_of(t).clipped(grown), width, height);
                 const auto corner_row = [&](int y) {
                     return corners.data() + static_cast<size_t>(y) * (width + 1) + r.x0;
                 };
-                const PixelRect px = tile_of(t);
                 if (restored(t, [&](std::string_view& in) {
                         read_raw(in, counters[t]);
                         read_raw(in, counts[t]);
                         for (int y = r.y0; y < r.y1; ++y)
                             for (int x = 0; x < r.width(); ++x) read_raw(in, corner_row(y)[x]);
                     })) {
-                    progress.add(static_cast<uint64_t>(px.width()) * px.height());
+                    progress.add(pixels_of(t));
                     return;
                 }
                 Counters c{};
@@ -521,8 +535,8 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                         for (int x = r.x0; x < r.x1; ++x) {
                             corners[static_cast<size_t>(y) * (width + 1) + x] =
                                 colour(static_cast<float>(x), static_cast<float>(y), c);
-                            // the tile's pixels: its corners less the image's last row/column
-                            if (x < width && y < height) tick.pixel();
+                            // the region's pixels: its corners less its last row and column
+                            if (x < window.x1 && y < window.y1) tick.pixel();
                         }
                     }
                 }
@@ -538,11 +552,11 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
             // Pass 2: refine the pixels whose corners differ.
             const AdaptiveSpec spec = AdaptiveSpec::from(aa, width, height);
             const float inv_S = 1.0f / static_cast<float>(spec.lattice());
-            parallel_items(control.threads, tile_count, [&](size_t item) {
+            parallel_items(control.threads, tiles.size(), [&](size_t item) {
                 if (cancelled()) return;
-                const size_t t = order[item];
+                const size_t t = tiles[item];
                 const size_t k = tile_count + t;
-                const PixelRect r = tile_of(t);
+                const PixelRect r = tile_of(t).clipped(window);
                 const auto mask_levels = [&](auto&& each) {  // the mask's bytes of the tile
                     if (!mask) return;
                     for (int y = r.y0; y < r.y1; ++y)
@@ -555,7 +569,7 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                         read_rect(in, out, r);
                         mask_levels([&](uint8_t& v) { read_raw(in, v); });
                     })) {
-                    progress.add(static_cast<uint64_t>(r.width()) * r.height());
+                    progress.add(pixels_of(t));
                     return;
                 }
                 Counters c{};

@@ -21,6 +21,8 @@ struct RenderStats {
     /// and around those whole samples. Share = intersect_sampled_seconds / sampled_seconds.
     double intersect_sampled_seconds = 0, sampled_seconds = 0;
     uint64_t peak_memory_bytes = 0;
+    /// --region X0,Y0,X1,Y1 (SPEC §3): the rectangle rendered; all 0 for the whole image.
+    int region[4] = {0, 0, 0, 0};
 
     /// Adds another thread's counters (times and sizes are not summed).
     void add_counters(const RenderStats& o) {

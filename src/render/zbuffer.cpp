@@ -61,18 +61,34 @@ void render_tiles(const ZbufferFrame& f, const RenderControl& control, const Gri
     const size_t tile_count = raster.tile_count();
     const size_t items = aa.mode == AaMode::adaptive ? 2 * tile_count : tile_count;
     std::vector<RenderStats> tile_stats(items);
+    // --region: only the tiles that hold its pixels (whole tiles; the rest is left as it is);
+    // adaptive's corners [x0, x1] × [y0, y1] come from the tiles of the region grown by one.
+    const PixelRect whole{0, 0, img.width, img.height};
+    const PixelRect window = control.region.empty() ? whole : control.region.clipped(whole);
+    const PixelRect grown{window.x0, window.y0, std::min(img.width, window.x1 + 1),
+                          std::min(img.height, window.y1 + 1)};
+    auto tiles_within = [&](const PixelRect& within) {
+        std::vector<size_t> list;
+        for (size_t t = 0; t < tile_count; ++t)
+            if (raster.tile_rect(t).overlaps(within)) list.push_back(t);
+        return list;
+    };
+    const std::vector<size_t> tiles = tiles_within(window);
+    const size_t reports =
+        aa.mode == AaMode::adaptive ? tiles.size() + tiles_within(grown).size() : tiles.size();
     std::atomic<size_t> tiles_done{0};
     const auto cancelled = [&] {
         return control.cancel && control.cancel->load(std::memory_order_relaxed);
     };
     const auto report = [&] {
         const size_t done = ++tiles_done;
-        if (control.progress) control.progress(static_cast<double>(done) / items);
+        if (control.progress) control.progress(static_cast<double>(done) / reports);
     };
     switch (aa.mode) {
         case AaMode::none:
-            parallel_items(control.threads, tile_count, [&](size_t t) {
+            parallel_items(control.threads, tiles.size(), [&](size_t item) {
                 if (cancelled()) return;
+                const size_t t = tiles[item];
                 const PixelRect r = raster.tile_rect(t);
                 Fragment frags[kRasterTile * kRasterTile];
                 uint32_t tests[kTerms ? kRasterTile * kRasterTile : 1];
@@ -82,8 +98,9 @@ void render_tiles(const ZbufferFrame& f, const RenderControl& control, const Gri
             });
             break;
         case AaMode::grid:
-            parallel_items(control.threads, tile_count, [&](size_t t) {
+            parallel_items(control.threads, tiles.size(), [&](size_t item) {
                 if (cancelled()) return;
+                const size_t t = tiles[item];
                 grid_tile(f, t, grid, out, tile_stats[t]);
                 report();
             });
@@ -91,15 +108,18 @@ void render_tiles(const ZbufferFrame& f, const RenderControl& control, const Gri
         case AaMode::adaptive: {
             // Pass 1: every pixel corner (x, y integers), rasterized and shaded once.
             std::vector<S> corners(static_cast<size_t>(img.width + 1) * (img.height + 1));
-            parallel_items(control.threads, tile_count, [&](size_t t) {
+            const std::vector<size_t> corner_tiles = tiles_within(grown);
+            parallel_items(control.threads, corner_tiles.size(), [&](size_t item) {
                 if (cancelled()) return;
+                const size_t t = corner_tiles[item];
                 adaptive_corners_tile(f, t, corners.data(), tile_stats[t]);
                 report();
             });
             // Pass 2: pixels whose corners differ are refined on their finest lattice.
             const AdaptiveSpec spec = AdaptiveSpec::from(aa, img.width, img.height);
-            parallel_items(control.threads, tile_count, [&](size_t t) {
+            parallel_items(control.threads, tiles.size(), [&](size_t item) {
                 if (cancelled()) return;
+                const size_t t = tiles[item];
                 adaptive_refine_tile(f, t, spec, corners.data(), out, control.aa_mask,
                                      tile_stats[tile_count + t]);
                 report();

@@ -118,8 +118,13 @@ def test_bad_argument_values(luz, tmp_path):
     assert "tests, all" in str(e.value)
     with pytest.raises(ValueError, match="aov"):
         luz.render("demo:primitives", width=8, height=8, aov="bogus")
-    with pytest.raises(NotImplementedError, match="issue 15"):
-        luz.render("demo:primitives", width=8, height=8, region=(0, 0, 4, 4))
+    with pytest.raises(ValueError, match=r"region \(0, 0, 9, 4\): outside the 8x8 image"):
+        luz.render("demo:primitives", width=8, height=8, region=(0, 0, 9, 4))
+    with pytest.raises(ValueError, match=r"region \(4, 0, 4, 4\): the region is empty"):
+        luz.render("demo:primitives", width=8, height=8, region=[4, 0, 4, 4])
+    for bad in ["0,0,4,4", (0, 0, 4), (0, 0, 4.0, 4), 7, (0, 0, True, 4)]:
+        with pytest.raises(TypeError, match="region: expected a sequence of four ints"):
+            luz.render("demo:primitives", width=8, height=8, region=bad)
     with pytest.raises(ValueError, match="px"):
         luz.ray_tree("demo:primitives", 800, 10)
     with pytest.raises(ValueError, match="py"):

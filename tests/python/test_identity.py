@@ -206,3 +206,19 @@ def test_scene_object(luz):
     again = luz.load(d)
     assert same_bits(luz.render(again, width=40, height=30).image,
                      luz.render(s, width=40, height=30).image)
+
+
+@pytest.mark.parametrize("aa", ["none", "grid", "adaptive"])
+def test_region_is_the_cli_region_and_the_crop_of_the_whole(luz, tmp_path, aa):
+    opts = SMALL + ["--aa", aa, "--set", 'render.antialias.filter="tent"']
+    expected = cli_image(tmp_path, "demo:whitted", opts + ["--region", "10,20,70,41"])
+    whole = luz.render("demo:whitted", width=96, height=72, aa=aa,
+                       set={"render.antialias.filter": "tent"}, aov=["depth"])
+    part = luz.render("demo:whitted", width=96, height=72, aa=aa,
+                      set={"render.antialias.filter": "tent"}, aov=["depth"],
+                      region=(10, 20, 70, 41))
+    assert part.image.shape == (21, 60, 3)
+    assert same_bits(part.image, expected)
+    assert same_bits(part.image, whole.image[20:41, 10:70])
+    assert same_bits(part.aov["depth"], whole.aov["depth"][20:41, 10:70])
+    assert part.stats["region"] == [10, 20, 70, 41]
