@@ -2,6 +2,7 @@
 // per-term images asked for and the statistics; and a pixel's ray tree.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -53,10 +54,11 @@ struct RenderOptions {
     RenderControl control;
     bool want_aa_mask = false;  ///< fill Frame::aa_mask
     std::vector<AovKind> aovs;  ///< the per-term images to fill (parse_aov_list("all", …))
-    /// When not empty, only these pixels (X1, Y1 exclusive; `--region`, SPEC §3): the Frame is
+    /// When set, only these pixels (X1, Y1 exclusive; `--region`, SPEC §3): the Frame is
     /// region.width() × region.height(), its pixels bit for bit those of the same rectangle of
-    /// the whole render (antialiasing and its filters included). Check it with check_region().
-    PixelRect region;
+    /// the whole render (antialiasing and its filters included). render() checks it with
+    /// check_region().
+    std::optional<PixelRect> region;
 };
 
 /// Throws SceneError naming `what` (e.g. "--region 0,0,900,10", "region") when `region` is

@@ -76,21 +76,14 @@ PixelRect parse_region(const std::string& text, const ImageDesc& image) {
     return r;
 }
 
-namespace {
-
-/// Whether a region was asked for (all zeros: the whole image).
-bool has_region(const PixelRect& r) { return r.x0 || r.y0 || r.x1 || r.y1; }
-
-}  // namespace
-
 Frame render(const Scene& scene, const Settings& settings, const RenderOptions& options) {
     check_fits(scene, settings);
     scene.prepare(settings.render.pipeline);
-    const bool region = has_region(options.region);
-    if (region) check_region(options.region, settings.image, "region");
+    const bool region = options.region.has_value();
+    if (region) check_region(*options.region, settings.image, "region");
     Frame frame;
     RenderControl control = options.control;
-    control.region = options.region;
+    control.region = options.region.value_or(PixelRect{});
     control.aa_mask = options.want_aa_mask ? &frame.aa_mask : nullptr;
     // The per-term images asked for, each once, in the order asked; the pipelines fill them.
     TermPlanes planes;
@@ -108,7 +101,7 @@ Frame render(const Scene& scene, const Settings& settings, const RenderOptions& 
     control.terms = planes.any() ? &planes : nullptr;
     frame.image = render(scene.built(), settings, control, frame.stats);
     frame.complete = !(control.cancel && control.cancel->load());
-    if (region) crop_frame(frame, options.region, frame.stats);
+    if (region) crop_frame(frame, *options.region, frame.stats);
     return frame;
 }
 

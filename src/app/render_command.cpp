@@ -37,7 +37,8 @@ int run_render(const RenderArgs& o) {
     const std::string out = o.output.empty() ? desc.name + ".png" : o.output;
     if (o.output.empty()) check_output_path(out, "default output");
     check_memory(desc, o.max_memory, static_cast<int>(aovs.size()));
-    const PixelRect region = o.region ? parse_region(*o.region, desc.image) : PixelRect{};
+    std::optional<PixelRect> region;
+    if (o.region) region = parse_region(*o.region, desc.image);
 
     // 3. Build, then render with a progress bar on a terminal.
     const auto start = std::chrono::steady_clock::now();

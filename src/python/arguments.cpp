@@ -89,7 +89,7 @@ long long int_argument(py::handle v, const char* name, long long lo, long long h
     return n;
 }
 
-PixelRect region_argument(py::handle region) {
+std::optional<PixelRect> region_argument(py::handle region) {
     if (region.is_none()) return {};
     const std::string expected = "region: expected a sequence of four ints (x0, y0, x1, y1), got ";
     if (!PySequence_Check(region.ptr()) || PyUnicode_Check(region.ptr()) ||
@@ -107,15 +107,15 @@ PixelRect region_argument(py::handle region) {
             throw py::type_error(expected + "an item of type " + type_name(item));
         v[k] = static_cast<int>(int_argument(item, "region", -(1ll << 30), 1ll << 30));
     }
-    return {v[0], v[1], v[2], v[3]};
+    return PixelRect{v[0], v[1], v[2], v[3]};
 }
 
-void check_region_argument(const PixelRect& r, const ImageDesc& image) {
-    if (!(r.x0 || r.y0 || r.x1 || r.y1)) return;
+void check_region_argument(const std::optional<PixelRect>& r, const ImageDesc& image) {
+    if (!r) return;
     try {
-        check_region(r, image,
-                     "region (" + std::to_string(r.x0) + ", " + std::to_string(r.y0) + ", " +
-                         std::to_string(r.x1) + ", " + std::to_string(r.y1) + ")");
+        check_region(*r, image,
+                     "region (" + std::to_string(r->x0) + ", " + std::to_string(r->y0) + ", " +
+                         std::to_string(r->x1) + ", " + std::to_string(r->y1) + ")");
     } catch (const SceneError& e) {
         throw py::value_error(e.what());
     }

@@ -5,6 +5,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,10 +29,10 @@ std::vector<AovKind> aov_argument(pybind11::handle aov);
 
 /// region=: None (the whole image) or a sequence of four ints (x0, y0, x1, y1), x1 and y1
 /// exclusive; checked against the image by check_region_argument() once the scene is known.
-PixelRect region_argument(pybind11::handle region);
+std::optional<PixelRect> region_argument(pybind11::handle region);
 
-/// Raises ValueError naming region= when `r` (not all zeros) is empty or outside `image`.
-void check_region_argument(const PixelRect& r, const ImageDesc& image);
+/// Raises ValueError naming region= when `r` is set and empty or outside `image`.
+void check_region_argument(const std::optional<PixelRect>& r, const ImageDesc& image);
 
 /// A path argument (str, bytes or os.PathLike) as a str.
 std::string path_argument(pybind11::handle path, const char* name);

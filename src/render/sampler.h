@@ -95,6 +95,19 @@ class PixelProgress {
     std::atomic<uint64_t> done_{0};
 };
 
+/// The pixels a render computes: RenderControl::region (inside the image), or the whole image.
+inline PixelRect render_window(const RenderControl& control, int width, int height) {
+    const PixelRect whole{0, 0, width, height};
+    return control.region.empty() ? whole : control.region.clipped(whole);
+}
+
+/// The pixels whose top-left corners adaptive's pass 1 computes for the pixels of `window`:
+/// `window` grown by one pixel to the right and below (inside the image), for the corners of
+/// its last column and row.
+inline PixelRect corner_window(const PixelRect& window, int width, int height) {
+    return {window.x0, window.y0, std::min(width, window.x1 + 1), std::min(height, window.y1 + 1)};
+}
+
 /// The order in which tiles are rendered: a fixed pseudo-random permutation of 0 … count−1
 /// (the same in every run), so that costly regions are spread over the whole render and the
 /// progress bar's time left stays honest. The image does not depend on the order.
@@ -384,8 +397,7 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
     // --region: only the tiles that hold its pixels, each cut to it. A pixel's value does not
     // depend on its tile (its samples, the tent's ring and its corners are computed where
     // needed, at the same points), so the region's pixels are those of the whole render.
-    const PixelRect window = control.region.empty() ? PixelRect{0, 0, width, height}
-                                                    : control.region.clipped({0, 0, width, height});
+    const PixelRect window = render_window(control, width, height);
     auto tiles_within = [&](const PixelRect& within) {
         std::vector<size_t> list;
         for (size_t t : order)
@@ -509,8 +521,7 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
             // A region's pixels need the corners [x0, x1] × [y0, y1]: the tiles of the region
             // grown by one pixel to the right and below compute them.
             std::vector<S> corners(static_cast<size_t>(width + 1) * (height + 1));
-            const PixelRect grown{window.x0, window.y0, std::min(width, window.x1 + 1),
-                                  std::min(height, window.y1 + 1)};
+            const PixelRect grown = corner_window(window, width, height);
             const std::vector<size_t> corner_tiles = tiles_within(grown);
             parallel_items(control.threads, corner_tiles.size(), [&](size_t item) {
                 if (cancelled()) return;

@@ -63,10 +63,8 @@ void render_tiles(const ZbufferFrame& f, const RenderControl& control, const Gri
     std::vector<RenderStats> tile_stats(items);
     // --region: only the tiles that hold its pixels (whole tiles; the rest is left as it is);
     // adaptive's corners [x0, x1] × [y0, y1] come from the tiles of the region grown by one.
-    const PixelRect whole{0, 0, img.width, img.height};
-    const PixelRect window = control.region.empty() ? whole : control.region.clipped(whole);
-    const PixelRect grown{window.x0, window.y0, std::min(img.width, window.x1 + 1),
-                          std::min(img.height, window.y1 + 1)};
+    const PixelRect window = render_window(control, img.width, img.height);
+    const PixelRect grown = corner_window(window, img.width, img.height);
     auto tiles_within = [&](const PixelRect& within) {
         std::vector<size_t> list;
         for (size_t t = 0; t < tile_count; ++t)

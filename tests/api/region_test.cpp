@@ -121,8 +121,9 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(Region, BadRectanglesAreRefusedNamingTheArgument) {
     const SceneDesc d = load({"demo:whitted", {}});
     const Scene scene = build(d);
-    for (const PixelRect& r : {PixelRect{5, 5, 5, 9}, PixelRect{0, 0, 84, 10},
-                               PixelRect{-1, 0, 3, 3}, PixelRect{4, 4, 2, 8}}) {
+    for (const PixelRect& r :
+         {PixelRect{5, 5, 5, 9}, PixelRect{0, 0, 0, 0}, PixelRect{0, 0, 84, 10},
+          PixelRect{-1, 0, 3, 3}, PixelRect{4, 4, 2, 8}}) {
         RenderOptions o;
         o.region = r;
         try {
