@@ -8,6 +8,7 @@ packages=(cmake ninja-build g++ pkg-config nlohmann-json3-dev libcli11-dev libpn
           python3-dev python3-numpy pybind11-dev  # the Python module (import luz), then its tests:
           python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib
           python3-tqdm python3-ipywidgets
+          openmpi-bin libopenmpi-dev  # mpirun -np N luz render (luz-mpi) and its tests
           chromium)  # luz figures (python3-matplotlib, python3-numpy above) and its page test
 missing=()
 for p in "${packages[@]}"; do

@@ -7,6 +7,7 @@
 //     luz::write_frame(frame, "primitives.png", desc.image.encoding);
 #pragma once
 
+#include "luz/animation.h"
 #include "luz/output.h"
 #include "luz/render.h"
 #include "luz/scene.h"

@@ -51,6 +51,10 @@ void add_render_options(CLI::App& cmd, RenderArgs& o) {
                    "render only the pixels X0 <= x < X1, Y0 <= y < Y1: an image X1-X0 by "
                    "Y1-Y0 whose pixels are those of the same rectangle of the whole render")
         ->type_name("X0,Y0,X1,Y1");
+    cmd.add_option("--frames", o.frames,
+                   "scene with an animation: render frames A to B-1 (or all) to X.0000.EXT, "
+                   "X.0001.EXT ... beside -o X.EXT")
+        ->type_name("A:B|all");
     cmd.add_flag("-q,--quiet", o.quiet, "print nothing on success, no progress bar");
     cmd.add_option("--set", o.sets,
                    "override any scene key by dotted path, e.g. materials.red.n=4 or "

@@ -27,6 +27,7 @@ struct RenderArgs {
     std::string aovs;                   ///< --aov NAME[,NAME…] or all (SPEC §1.5)
     std::string checkpoint;             ///< --checkpoint FILE: finished tiles kept there (SPEC §3)
     std::optional<std::string> region;  ///< --region X0,Y0,X1,Y1 as typed; unset: whole image
+    std::optional<std::string> frames;  ///< --frames A:B or all as typed; unset: frame 0 only
     bool quiet = false;
     std::optional<uint64_t> max_memory;  ///< bytes; default half of physical memory
 };

@@ -1,5 +1,5 @@
-// `luz render`: options → overrides → scene → checks → render with progress → image and stats.
-// A thin front end: everything it does goes through the public API (include/luz/).
+// `luz render`: options → overrides → scene (and its frames) → checks → render with progress →
+// images and stats. A thin front end: everything it does goes through the public API.
 #include "app/render_command.h"
 
 #include <algorithm>
@@ -12,8 +12,30 @@
 #include "luz/luz.h"
 
 namespace luz {
+namespace {
 
-int run_render(const RenderArgs& o) {
+/// The files of one rendered frame, written to temporary files: statistics aside, the
+/// refinement mask, the image and its per-term images. commit() renames them into place.
+struct FrameFiles {
+    std::optional<PendingFile> mask;
+    std::vector<std::unique_ptr<PendingFile>> images;
+
+    FrameFiles(const Frame& frame, const std::string& out, const std::string& mask_path,
+               Encoding encoding) {
+        if (!mask_path.empty())
+            mask.emplace(mask_path, encode_image(mask_path, frame_aa_mask(frame)));
+        for (auto& [path, bytes] : encode_frame_files(frame, out, encoding))
+            images.push_back(std::make_unique<PendingFile>(path, bytes));
+    }
+    void commit() {
+        for (auto& f : images) f->commit();
+        if (mask) mask->commit();
+    }
+};
+
+}  // namespace
+
+int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
     // 0. Ctrl-C / SIGTERM: until the render starts nothing is written, so a signal ends luz at
     //    once; from then on it cancels the render and nothing is written (app/signals.h).
     install_interrupt_handlers();
@@ -24,21 +46,32 @@ int run_render(const RenderArgs& o) {
     if (!o.stats_file.empty()) check_writable_target(o.stats_file, "--stats");
     if (!o.aa_mask_file.empty()) check_output_path(o.aa_mask_file, "--aa-mask");
     if (!o.checkpoint.empty()) check_writable_target(o.checkpoint, "--checkpoint");
+    if (o.frames && !o.checkpoint.empty()) {
+        throw InputError(
+            "--checkpoint: cannot be used with --frames (each frame is written "
+            "when done: run again with --frames from the first one missing)");
+    }
     const std::vector<AovKind> aovs =
         o.aovs.empty() ? std::vector<AovKind>{} : parse_aov_list(o.aovs, "--aov " + o.aovs);
     const std::vector<Override> overrides = overrides_of(o);
 
-    // 2. The scene, with --set and then the options applied; one validation names the key.
-    //    A mesh file may take a quarter of the memory limit (its text, parse and mesh).
+    // 2. The scene, with --set and then the options applied; one validation names the key, for
+    //    every frame of an animation. A mesh file may take a quarter of the memory limit.
     set_max_text_file_bytes((o.max_memory ? *o.max_memory : default_memory_limit()) / 4);
-    const SceneDesc desc = load_scene(o.scene, overrides);
-    for (const std::string& w : desc.warnings)
+    const Animation animation = Animation::load(o.scene, overrides);
+    const SceneDesc& first = animation.first();
+    for (const std::string& w : first.warnings)
         std::fprintf(stderr, "luz: warning: %s\n", w.c_str());
-    const std::string out = o.output.empty() ? desc.name + ".png" : o.output;
+    const FrameRange range = o.frames ? parse_frames(*o.frames, animation) : FrameRange{};
+    const std::string out = o.output.empty() ? first.name + ".png" : o.output;
     if (o.output.empty()) check_output_path(out, "default output");
-    check_memory(desc, o.max_memory, static_cast<int>(aovs.size()));
+    check_memory(first, o.max_memory, static_cast<int>(aovs.size()));
     std::optional<PixelRect> region;
-    if (o.region) region = parse_region(*o.region, desc.image);
+    if (o.region) region = parse_region(*o.region, first.image);
+    // Each frame's files: X.EXT, or X.0007.EXT with --frames.
+    const auto file_of = [&](const std::string& path, int f) {
+        return o.frames && !path.empty() ? frame_path(path, f) : path;
+    };
 
     // 3. Build, then render with a progress bar on a terminal.
     const auto start = std::chrono::steady_clock::now();
@@ -46,59 +79,93 @@ int run_render(const RenderArgs& o) {
     // any work; its key is the whole scene as the loader understood it, with the options.
     std::optional<Checkpoint> checkpoint;
     if (!o.checkpoint.empty()) {
-        std::string key = scene_to_json(desc, "/") + "\naovs";
+        std::string key = scene_to_json(first, "/") + "\naovs";
         for (AovKind k : aovs) key += std::string(" ") + aov_name(k);
         key += o.aa_mask_file.empty() ? "\nno mask" : "\nmask";
         if (o.region) key += "\nregion " + *o.region;
         checkpoint.emplace(o.checkpoint, fingerprint(key));
     }
-    const Scene scene = build(desc);
     ProgressBar bar(!o.quiet && stderr_is_terminal());
     luz::RenderOptions options;
     options.control.threads = o.threads;
     options.want_aa_mask = !o.aa_mask_file.empty();
     options.aovs = aovs;
     options.region = region;
-    if (bar.enabled()) options.control.progress = [&bar](double f) { bar.update(f); };
     options.control.cancel = &interrupt_flag();
     if (checkpoint) options.control.checkpoint = &*checkpoint;
     options.control.warning = [&bar](const std::string& w) { bar.interject("luz: warning: " + w); };
-    set_interrupt_exits_now(false);
-    Frame frame = render(scene, desc, options);  // on a throw, ~ProgressBar ends the line
-    if (checkpoint && !frame.complete) checkpoint->save();  // interrupted: keep what is done
-    throw_if_interrupted();  // the image is incomplete: write nothing
+
+    Scene scene;
+    SceneDesc built_from;
+    std::vector<RenderStats> frame_stats;
+    std::vector<int> numbers;
+    std::optional<PendingFile> stats_file;
+    Frame frame;
+    for (int f = range.first; f < range.end; ++f) {
+        const SceneDesc desc = f == 0 ? first : animation.frame(f);
+        if (!scene || needs_rebuild(built_from, desc)) {
+            scene = build(desc);
+            built_from = desc;
+        }
+        const int done = f - range.first;
+        if (bar.enabled()) {
+            options.control.progress = [&bar, done, n = range.count()](double p) {
+                bar.update((done + p) / n);
+            };
+        }
+        set_interrupt_exits_now(false);
+        const auto frame_start = std::chrono::steady_clock::now();
+        frame = render_frame(scene, desc, options);  // on a throw, ~ProgressBar ends the line
+        if (checkpoint && !frame.complete) checkpoint->save();  // interrupted: keep what is done
+        throw_if_interrupted();  // the image is incomplete: write nothing
+        RenderStats& stats = frame.stats;
+        // From scene build (or, for later frames, the frame's own start) to image in memory.
+        stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                                      (f == range.first ? start : frame_start))
+                            .count();
+        stats.threads = resolve_threads(o.threads);
+        stats.peak_memory_bytes = std::max(stats.peak_memory_bytes, peak_resident_bytes());
+
+        // 4. The files: the image atomically, then the others renamed into place, so that a
+        //    failure leaves none of this frame behind. Finished frames stay.
+        FrameFiles files(frame, file_of(out, f), file_of(o.aa_mask_file, f), desc.image.encoding);
+        frame_stats.push_back(stats);
+        numbers.push_back(f);
+        if (f + 1 == range.end && !o.stats_file.empty()) {  // the last frame: all stats known
+            stats_file.emplace(o.stats_file, o.frames
+                                                 ? animation_stats_json(frame_stats, numbers, first)
+                                                 : frame_stats_json(frame, first));
+        }
+        throw_if_interrupted();  // the temporary files go with their destructors
+        files.commit();
+        if (o.frames && !o.quiet && !bar.enabled()) {
+            std::printf("wrote %s\n", file_of(out, f).c_str());
+            std::fflush(stdout);
+        }
+    }
     bar.finish();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-    RenderStats& stats = frame.stats;
-    stats.seconds = seconds;  // from scene build to image in memory (stats.h)
-    stats.threads = resolve_threads(o.threads);
-    stats.peak_memory_bytes = std::max(stats.peak_memory_bytes, peak_resident_bytes());
-
-    // 4. The files: statistics and the refinement mask to temporary files, the image
-    //    atomically, then the others renamed into place, so that a failure leaves none behind.
-    std::optional<PendingFile> stats_file;
-    if (!o.stats_file.empty()) stats_file.emplace(o.stats_file, frame_stats_json(frame, desc));
-    std::optional<PendingFile> mask_file;
-    if (!o.aa_mask_file.empty()) {
-        mask_file.emplace(o.aa_mask_file, encode_image(o.aa_mask_file, frame_aa_mask(frame)));
-    }
-    // The image, then each per-term image (X.NAME.EXT, or layers of X.exr).
-    std::vector<std::unique_ptr<PendingFile>> image_files;
-    for (auto& [path, bytes] : encode_frame_files(frame, out, desc.image.encoding))
-        image_files.push_back(std::make_unique<PendingFile>(path, bytes));
-    throw_if_interrupted();  // the temporary files go with their destructors
-    for (auto& f : image_files) f->commit();
     if (stats_file) stats_file->commit();
-    if (mask_file) mask_file->commit();
     if (checkpoint) checkpoint->remove();  // the outputs are written: nothing left to continue
 
     if (!o.quiet) {
-        std::printf("wrote %s (%d\u00d7%d, %s, %.2f s)\n", out.c_str(), frame.image.width,
-                    frame.image.height, pipeline_name(desc.render.pipeline), seconds);
+        if (o.frames) {
+            std::printf("wrote %d frames %s … %s (%d\u00d7%d, %s, %.2f s)\n", range.count(),
+                        file_of(out, range.first).c_str(), file_of(out, range.end - 1).c_str(),
+                        frame.image.width, frame.image.height, pipeline_name(first.render.pipeline),
+                        seconds);
+        } else {
+            std::printf("wrote %s (%d\u00d7%d, %s, %.2f s)\n", out.c_str(), frame.image.width,
+                        frame.image.height, pipeline_name(first.render.pipeline), seconds);
+        }
     }
     return 0;
+}
+
+int run_render(const RenderArgs& o) {
+    return run_render(o, [](const Scene& scene, const SceneDesc& desc,
+                            const RenderOptions& options) { return render(scene, desc, options); });
 }
 
 }  // namespace luz

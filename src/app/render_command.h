@@ -1,12 +1,23 @@
 // `luz render`: load, check, render and write one scene (SPEC §3).
 #pragma once
 
+#include <functional>
+
 #include "app/cli_options.h"
+#include "luz/render.h"
+#include "luz/scene.h"
 
 namespace luz {
 
 /// Runs `luz render` with `o`; returns 0 on success. Bad input throws InputError (exit 2),
 /// anything else std::exception (exit 1); on failure no output file is left behind.
 int run_render(const RenderArgs& o);
+
+/// How a front end renders one frame: luz::render() in one process, a share of the tiles per
+/// process under MPI (src/mpi/).
+using FrameRenderer = std::function<Frame(const Scene&, const SceneDesc&, const RenderOptions&)>;
+
+/// run_render() with each frame rendered by `render_frame`.
+int run_render(const RenderArgs& o, const FrameRenderer& render_frame);
 
 }  // namespace luz

@@ -140,6 +140,35 @@ constexpr std::string_view kBunny = R"json({
   ]
 })json";
 
+// The lecture's Phong highlight Ks·cos(α)^n as an animation (48 frames, 2 s at 24 fps): the
+// exponent n grows from 1 (a broad sheen over the whole lit side) to 200 (a small sharp spot),
+// keyed nearly geometrically since the look changes most at small n, while the light sweeps
+// from the left to the right, so the highlight narrows and follows it. Exposure: the light is
+// ≈ 8 units from the sphere, Il/(d+K) ≈ 10/9 ≈ 1.1, so the lit side is ≈ Kd·cos θ + Ks·cos(α)^n + Ka, up to ≈ 1 in red.
+constexpr std::string_view kHighlight = R"json({
+  "image":  { "width": 640, "height": 480, "background": [0.05, 0.05, 0.08] },
+  "camera": { "projection": "perspective", "position": [0, 1.6, 6], "look_at": [0, 0.9, 0],
+              "up": [0, 1, 0], "fov_y": 32 },
+  "render": { "pipeline": "raycast", "model": "phong" },
+  "lights": [ { "position": [-6, 5, 5], "intensity": 10 } ],
+  "materials": {
+    "floor":  { "ka": [0.06, 0.06, 0.06], "kd": [0.5, 0.5, 0.5], "ks": 0.05, "n": 4,
+                "checker": { "size": 1, "ka": [0.04, 0.04, 0.045], "kd": [0.25, 0.25, 0.28] } },
+    "red":    { "ka": [0.08, 0.015, 0.015], "kd": [0.5, 0.07, 0.07], "ks": 0.35, "n": 1 }
+  },
+  "objects": [
+    { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "floor" },
+    { "type": "sphere", "center": [0, 1, 0], "radius": 1, "material": "red" }
+  ],
+  "animation": {
+    "frames": 48, "fps": 24,
+    "keys": {
+      "materials.red.n": [[0, 1], [12, 5], [24, 20], [36, 60], [47, 200]],
+      "lights.0.position": [[0, [-6, 5, 5]], [47, [6, 5, 5]]]
+    }
+  }
+})json";
+
 constexpr DemoScene kDemos[] = {
     {"primitives",
      "the practical assignment: sphere, cube, cylinder, cone and torus on a floor (zbuffer)",
@@ -153,6 +182,10 @@ constexpr DemoScene kDemos[] = {
     {"bunny",
      "the Stanford bunny in glass among the primitives and a metal sphere (raytrace, a mesh)",
      kBunny},
+    {"highlight",
+     "an animation (48 frames): Phong's exponent n from 1 to 200 on a red sphere while the "
+     "light sweeps from left to right (raycast; luz render demo:highlight --frames all)",
+     kHighlight},
 };
 
 }  // namespace

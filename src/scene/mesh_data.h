@@ -3,7 +3,10 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "math/vec3.h"
@@ -22,5 +25,9 @@ struct MeshData {
 
     size_t triangle_count() const { return position.size() / 3; }
 };
+
+/// Meshes already read, by (file as named, with its MTL materials): the frames of an animation
+/// read each OBJ file once (scene_loader.h).
+using MeshCache = std::map<std::pair<std::string, bool>, std::shared_ptr<const MeshData>>;
 
 }  // namespace luz

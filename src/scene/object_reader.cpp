@@ -107,29 +107,40 @@ void read_shape_key(const Section& s, const ShapeKey& k, ObjectDesc& o,
 
 void MeshFiles::load(ObjectDesc& o, bool names_material, MaterialTable& materials) {
     const bool with_materials = !names_material;
-    Loaded& l = loaded_[{o.file, with_materials}];
+    const std::pair<std::string, bool> id{o.file, with_materials};
+    Loaded& l = loaded_[id];
     if (!l.mesh) {
-        const bool demo = scene_.source.rfind("demo:", 0) == 0;
-        const TextReader read = [demo](const std::string& path, std::string& reason) {
-            if (demo) {
-                if (const auto text = embedded_file(path)) return std::optional(std::string(*text));
-            }
-            return read_text_file(path, reason);
-        };
-        std::string reason;
-        const std::optional<std::string> text = read(o.file, reason);
-        if (!text) {
-            throw InputError(scene_.source + ": " + o.path + ".file: cannot read " + o.file + ": " +
-                             reason);
+        if (cache_ && cache_->count(id)) {
+            l.mesh = cache_->at(id);
+        } else {
+            l.mesh = read_mesh(o.file, with_materials, o.path);
+            if (cache_) (*cache_)[id] = l.mesh;
         }
-        l.mesh = std::make_shared<const MeshData>(
-            parse_obj(*text, o.file, with_materials, read, scene_.warnings));
         if (with_materials) {
             for (const Material& m : l.mesh->materials) l.scene_index.push_back(materials.add(m));
         }
     }
     o.mesh = l.mesh;
     o.mesh_materials = l.scene_index;
+}
+
+std::shared_ptr<const MeshData> MeshFiles::read_mesh(const std::string& file, bool with_materials,
+                                                     const std::string& path) {
+    const bool demo = scene_.source.rfind("demo:", 0) == 0;
+    const TextReader read = [demo](const std::string& name, std::string& reason) {
+        if (demo) {
+            if (const auto text = embedded_file(name)) return std::optional(std::string(*text));
+        }
+        return read_text_file(name, reason);
+    };
+    std::string reason;
+    const std::optional<std::string> text = read(file, reason);
+    if (!text) {
+        throw InputError(scene_.source + ": " + path + ".file: cannot read " + file + ": " +
+                         reason);
+    }
+    return std::make_shared<const MeshData>(
+        parse_obj(*text, file, with_materials, read, scene_.warnings));
 }
 
 ObjectDesc read_object(const Json& j, const std::string& path, MaterialTable& materials,

@@ -17,7 +17,8 @@ namespace luz::loader {
 /// The OBJ files of the scene's meshes, each loaded once (SPEC §2 `mesh`).
 class MeshFiles {
   public:
-    explicit MeshFiles(SceneDesc& scene) : scene_(scene) {}
+    /// `cache`: meshes read by earlier loads, reused and added to; nullptr: none.
+    MeshFiles(SceneDesc& scene, MeshCache* cache) : scene_(scene), cache_(cache) {}
 
     /// Loads o.file into o.mesh. Without a `material` key, the MTL materials its faces use join
     /// the scene's materials (named "file.obj:name") and o.mesh_materials maps them. A built-in
@@ -25,11 +26,16 @@ class MeshFiles {
     void load(ObjectDesc& o, bool names_material, MaterialTable& materials);
 
   private:
+    /// Reads and parses `file` (named at key path `path` in messages).
+    std::shared_ptr<const MeshData> read_mesh(const std::string& file, bool with_materials,
+                                              const std::string& path);
+
     struct Loaded {
         std::shared_ptr<const MeshData> mesh;
         std::vector<int> scene_index;
     };
     SceneDesc& scene_;
+    MeshCache* cache_;
     std::map<std::pair<std::string, bool>, Loaded> loaded_;
 };
 

@@ -8,6 +8,7 @@
 
 #include "math/transform.h"
 #include "math/vec3.h"
+#include "scene/animation_desc.h"
 #include "scene/material.h"
 #include "scene/mesh_data.h"
 #include "scene/shape_desc.h"
@@ -92,6 +93,8 @@ struct SceneDesc : Settings {
     GeometryDesc geometry;  ///< the `render` keys tessellation and accel
     std::vector<ObjectDesc> objects;
     std::vector<std::string> warnings;  ///< non-fatal input problems ("FILE:LINE: what")
+    AnimationDesc animation;            ///< the `animation` key (frames 0: none)
+    int frame = 0;                      ///< which of its frames this description is
 };
 
 }  // namespace luz

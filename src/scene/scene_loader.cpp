@@ -4,12 +4,15 @@
 // the override) and the line:column or key path.
 #include "scene/scene_loader.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <utility>
 
+#include "scene/animation.h"
+#include "scene/animation_reader.h"
 #include "scene/demo_scenes.h"
 #include "scene/json_readers.h"
 #include "scene/material_table.h"
@@ -23,11 +26,12 @@ namespace {
 using namespace loader;
 
 /// The document (overrides already applied) → SceneDesc. Throws KeyError.
-void read_scene(const Json& doc, const std::string& base_dir, SceneDesc& scene) {
-    const Section top(
-        doc, "",
-        {"image", "camera", "render", "ambient", "attenuation_k", "lights", "materials", "objects"},
-        "");
+void read_scene(const Json& doc, const std::string& base_dir, MeshCache* meshes_read,
+                SceneDesc& scene) {
+    const Section top(doc, "",
+                      {"image", "camera", "render", "ambient", "attenuation_k", "lights",
+                       "materials", "objects", "animation"},
+                      "");
     if (const Json* j = top.get("image")) read_image(*j, scene.image);
     read_camera(top.get("camera"), scene.camera);
     if (const Json* j = top.get("render")) read_render(*j, scene.render, scene.geometry);
@@ -35,7 +39,7 @@ void read_scene(const Json& doc, const std::string& base_dir, SceneDesc& scene) 
     top.number("attenuation_k", scene.attenuation_k);
 
     MaterialTable materials(scene.materials);
-    MeshFiles meshes(scene);
+    MeshFiles meshes(scene, meshes_read);
     if (const Json* j = top.get("materials")) materials.read_section(*j);
     if (const Json* j = top.get("objects")) {
         if (!j->is_array()) fail("objects", "expected an array of objects, got " + describe(*j));
@@ -47,30 +51,16 @@ void read_scene(const Json& doc, const std::string& base_dir, SceneDesc& scene) 
     read_lights(top.get("lights"), scene);
 }
 
-}  // namespace
-
-SceneDesc parse_scene(std::string_view json_text, const std::string& file,
-                      const std::string& base_dir, const std::vector<Override>& overrides) {
-    Json doc = parse_text(json_text, file);
-
-    std::vector<std::string> roots;  // per override: what it created or replaced
-    roots.reserve(overrides.size());
-    for (const Override& o : overrides) roots.push_back(apply_override(doc, o));
-
-    SceneDesc scene;
-    scene.source = file;
-    if (file.rfind("demo:", 0) == 0) {
-        scene.name = file.substr(5);
-    } else {
-        scene.name = std::filesystem::path(file).stem().string();
-    }
-    if (scene.name.empty()) scene.name = "scene";
-
+/// Runs `read` (which reads part of `doc`, where `overrides` were applied, creating or
+/// replacing `roots`) and turns its KeyError into an InputError blaming the latest override
+/// that put the bad value there (or, for a check across keys, changed one of the keys
+/// involved); otherwise the file.
+template <typename Read>
+void blaming(const std::string& file, const std::vector<Override>& overrides,
+             const std::vector<std::string>& roots, Read read) {
     try {
-        read_scene(doc, base_dir, scene);
+        read();
     } catch (const KeyError& e) {
-        // The latest override that put the bad value there (or, for a check across keys, that
-        // changed one of the keys involved) is to blame; otherwise the file.
         for (std::size_t i = overrides.size(); i-- > 0;) {
             const Override& o = overrides[i];
             if (!e.path.empty() &&
@@ -81,7 +71,92 @@ SceneDesc parse_scene(std::string_view json_text, const std::string& file,
         }
         throw InputError(file + ": " + (e.path.empty() ? "" : e.path + ": ") + e.what);
     }
+}
+
+/// The document with the user's overrides applied, and its animation.
+struct Document {
+    Json doc;
+    std::vector<Override> overrides;
+    std::vector<std::string> roots;  ///< per override: what it created or replaced
+    AnimationDesc animation;
+};
+
+Document read_document(std::string_view json_text, const std::string& file,
+                       const std::vector<Override>& overrides) {
+    Document d{parse_text(json_text, file), overrides, {}, {}};
+    d.roots.reserve(overrides.size());
+    for (const Override& o : overrides) d.roots.push_back(apply_override(d.doc, o));
+    blaming(file, d.overrides, d.roots, [&] {
+        if (d.doc.is_object() && d.doc.contains("animation")) {
+            d.animation = read_animation(d.doc["animation"]);
+        }
+    });
+    return d;
+}
+
+/// Frame `frame` of the document: its keyframed values applied after the user's overrides,
+/// the scene read, then the camera's orbit.
+SceneDesc read_frame(const Document& d, const std::string& file, const std::string& base_dir,
+                     int frame, MeshCache* meshes) {
+    SceneDesc scene;
+    scene.source = file;
+    if (file.rfind("demo:", 0) == 0) {
+        scene.name = file.substr(5);
+    } else {
+        scene.name = std::filesystem::path(file).stem().string();
+    }
+    if (scene.name.empty()) scene.name = "scene";
+
+    std::vector<Override> overrides = d.overrides;
+    std::vector<std::string> roots = d.roots;
+    Json doc_copy;
+    const Json* doc = &d.doc;
+    if (!d.animation.keys.empty()) {
+        doc_copy = d.doc;
+        doc = &doc_copy;
+        for (Override& o : frame_overrides(d.animation, frame, file)) {
+            roots.push_back(apply_override(doc_copy, o));
+            overrides.push_back(std::move(o));
+        }
+    }
+    blaming(file, overrides, roots, [&] { read_scene(*doc, base_dir, meshes, scene); });
+    apply_orbit(d.animation, frame, scene.camera);
+    scene.animation = d.animation;
+    scene.frame = frame;
     return scene;
+}
+
+}  // namespace
+
+SceneDesc parse_scene(std::string_view json_text, const std::string& file,
+                      const std::string& base_dir, const std::vector<Override>& overrides,
+                      MeshCache* meshes) {
+    const Document d = read_document(json_text, file, overrides);
+    MeshCache own;
+    if (!meshes) meshes = &own;
+    SceneDesc first = read_frame(d, file, base_dir, 0, meshes);
+    // Every frame is checked now, before any rendering (orbit alone changes nothing checked).
+    if (!d.animation.keys.empty()) {
+        for (int f = 1; f < d.animation.frames; ++f) read_frame(d, file, base_dir, f, meshes);
+    }
+    return first;
+}
+
+SceneDesc parse_scene(std::string_view json_text, const std::string& file,
+                      const std::string& base_dir, const std::vector<Override>& overrides) {
+    return parse_scene(json_text, file, base_dir, overrides, nullptr);
+}
+
+SceneDesc parse_scene_frame(std::string_view json_text, const std::string& file,
+                            const std::string& base_dir, const std::vector<Override>& overrides,
+                            int frame, MeshCache* meshes) {
+    const Document d = read_document(json_text, file, overrides);
+    const int frames = std::max(d.animation.frames, 1);
+    if (frame < 0 || frame >= frames) {
+        throw InputError(file + ": no frame " + std::to_string(frame) + " (frames 0 to " +
+                         std::to_string(frames - 1) + ")");
+    }
+    return read_frame(d, file, base_dir, frame, meshes);
 }
 
 SceneText read_scene_text(const std::string& source) {

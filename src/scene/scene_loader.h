@@ -38,8 +38,20 @@ SceneText read_scene_text(const std::string& source);
 /// the result (SPEC §2). Throws InputError naming the file and the line:column or key path.
 SceneDesc load_scene(const std::string& source, const std::vector<Override>& overrides = {});
 
-/// The same from JSON text; `file` labels messages and `base_dir` resolves relative paths.
+/// The same from JSON text; `file` labels messages and `base_dir` resolves relative paths. A
+/// scene with an `animation` gives its frame 0, with every frame checked (SPEC §2). Meshes in
+/// `meshes` are reused, and those read are added to it (nullptr: none).
 SceneDesc parse_scene(std::string_view json_text, const std::string& file,
                       const std::string& base_dir, const std::vector<Override>& overrides = {});
+SceneDesc parse_scene(std::string_view json_text, const std::string& file,
+                      const std::string& base_dir, const std::vector<Override>& overrides,
+                      MeshCache* meshes);
+
+/// Frame `frame` of the scene's animation (frame 0 of a scene without one): its keyframed values
+/// set after `overrides`, then the camera's orbit. Meshes in `meshes` are reused, and those read
+/// are added to it (nullptr: none). Checks only this frame. Throws InputError.
+SceneDesc parse_scene_frame(std::string_view json_text, const std::string& file,
+                            const std::string& base_dir, const std::vector<Override>& overrides,
+                            int frame, MeshCache* meshes);
 
 }  // namespace luz
