@@ -65,9 +65,20 @@ int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
     const FrameRange range = o.frames ? parse_frames(*o.frames, animation) : FrameRange{};
     const std::string out = o.output.empty() ? first.name + ".png" : o.output;
     if (o.output.empty()) check_output_path(out, "default output");
-    check_memory(first, o.max_memory, static_cast<int>(aovs.size()));
+    // Memory and --region for every frame to render, before any work: a key may make a frame
+    // larger or smaller than the first.
     std::optional<PixelRect> region;
-    if (o.region) region = parse_region(*o.region, first.image);
+    for (int f = range.first; f < range.end; ++f) {
+        try {
+            const SceneDesc d = f == 0 ? first : animation.frame(f);
+            check_memory(d, o.max_memory, static_cast<int>(aovs.size()));
+            if (o.region) region = parse_region(*o.region, d.image);
+        } catch (const InputError& e) {
+            if (f == 0) throw;
+            throw InputError("--frames " + *o.frames + ": frame " + std::to_string(f) + ": " +
+                             e.what());
+        }
+    }
     // Each frame's files: X.EXT, or X.0007.EXT with --frames.
     const auto file_of = [&](const std::string& path, int f) {
         return o.frames && !path.empty() ? frame_path(path, f) : path;

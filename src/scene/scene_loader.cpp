@@ -25,15 +25,19 @@ namespace {
 
 using namespace loader;
 
-/// The document (overrides already applied) → SceneDesc. Throws KeyError.
+/// The document (overrides already applied) → SceneDesc, its camera turned by the orbit of
+/// `animation` at `frame`. Throws KeyError.
 void read_scene(const Json& doc, const std::string& base_dir, MeshCache* meshes_read,
-                SceneDesc& scene) {
+                const AnimationDesc& animation, int frame, SceneDesc& scene) {
     const Section top(doc, "",
                       {"image", "camera", "render", "ambient", "attenuation_k", "lights",
                        "materials", "objects", "animation"},
                       "");
     if (const Json* j = top.get("image")) read_image(*j, scene.image);
     read_camera(top.get("camera"), scene.camera);
+    // The orbit before anything placed by the camera (the implicit light, lights without a
+    // position): frame f is the scene with the camera where the orbit puts it.
+    apply_orbit(animation, frame, scene.camera);
     if (const Json* j = top.get("render")) read_render(*j, scene.render, scene.geometry);
     top.rgb("ambient", scene.ambient);
     top.number("attenuation_k", scene.attenuation_k);
@@ -95,7 +99,7 @@ Document read_document(std::string_view json_text, const std::string& file,
 }
 
 /// Frame `frame` of the document: its keyframed values applied after the user's overrides,
-/// the scene read, then the camera's orbit.
+/// then the scene read with the camera's orbit.
 SceneDesc read_frame(const Document& d, const std::string& file, const std::string& base_dir,
                      int frame, MeshCache* meshes) {
     SceneDesc scene;
@@ -119,8 +123,8 @@ SceneDesc read_frame(const Document& d, const std::string& file, const std::stri
             overrides.push_back(std::move(o));
         }
     }
-    blaming(file, overrides, roots, [&] { read_scene(*doc, base_dir, meshes, scene); });
-    apply_orbit(d.animation, frame, scene.camera);
+    blaming(file, overrides, roots,
+            [&] { read_scene(*doc, base_dir, meshes, d.animation, frame, scene); });
     scene.animation = d.animation;
     scene.frame = frame;
     return scene;

@@ -1,0 +1,514 @@
+// Tests of animations in the scene layer (SPEC §2 `animation`): keyframes interpolated linearly
+// and held, arrays, the camera's turntable orbit, keys set after --set, meshes read once over
+// the frames, and bad animations refused with a message naming the key path and the frame.
+#include "scene/animation.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene/scene_loader.h"
+
+namespace luz {
+namespace {
+
+using ::testing::HasSubstr;
+
+const char* const kFile = "scenes/a.json";
+
+SceneDesc parse(const std::string& json, const std::vector<Override>& overrides = {},
+                MeshCache* meshes = nullptr, const std::string& base_dir = "scenes") {
+    return parse_scene(json, kFile, base_dir, overrides, meshes);
+}
+
+SceneDesc frame_of(const std::string& json, int f, const std::vector<Override>& overrides = {},
+                   MeshCache* meshes = nullptr, const std::string& base_dir = "scenes") {
+    return parse_scene_frame(json, kFile, base_dir, overrides, f, meshes);
+}
+
+std::vector<Override> sets(std::initializer_list<const char*> args) {
+    std::vector<Override> out;
+    for (const char* a : args) out.push_back(parse_set(a));
+    return out;
+}
+
+void expect_vec(const Vec3& a, const Vec3& b, float tol = 1e-5f) {
+    EXPECT_NEAR(a.x, b.x, tol);
+    EXPECT_NEAR(a.y, b.y, tol);
+    EXPECT_NEAR(a.z, b.z, tol);
+}
+
+const Material& material(const SceneDesc& s, const std::string& name) {
+    for (const Material& m : s.materials)
+        if (m.name == name) return m;
+    ADD_FAILURE() << "no material " << name;
+    return s.materials.front();
+}
+
+/// A small scene with the `animation` value `animation`.
+std::string scene_with(const std::string& animation) {
+    return R"({"materials": {"red": {"kd": [0.8, 0.1, 0.1], "n": 10}},
+               "lights": [{"position": [-4, 5, 5], "intensity": 10}],
+               "objects": [{"type": "sphere", "material": "red"}],
+               "animation": )" +
+           animation + "}";
+}
+
+AnimationKey key(std::vector<int> frames, std::vector<std::vector<double>> values) {
+    AnimationKey k;
+    k.path = "materials.red.n";
+    k.array = values.front().size() > 1;
+    k.frames = std::move(frames);
+    k.values = std::move(values);
+    return k;
+}
+
+// --- key_value: the interpolation itself ---------------------------------------------------
+
+TEST(AnimationKeyValue, LinearBetweenKeyframes) {
+    const AnimationKey k = key({2, 6, 10}, {{1}, {9}, {5}});
+    EXPECT_DOUBLE_EQ(key_value(k, 3)[0], 3.0);
+    EXPECT_DOUBLE_EQ(key_value(k, 4)[0], 5.0);
+    EXPECT_DOUBLE_EQ(key_value(k, 5)[0], 7.0);
+    EXPECT_DOUBLE_EQ(key_value(k, 7)[0], 8.0);  // the second segment goes down
+    EXPECT_DOUBLE_EQ(key_value(k, 9)[0], 6.0);
+}
+
+TEST(AnimationKeyValue, ExactlyTheKeyframeValuesAtKeyframes) {
+    // Values whose interpolation would round: at the keyframe itself, the value as written.
+    const AnimationKey k = key({0, 3, 7, 11}, {{0.1}, {0.7}, {1.0 / 3.0}, {1e-9}});
+    for (std::size_t i = 0; i < k.frames.size(); ++i) {
+        ASSERT_EQ(key_value(k, k.frames[i]).size(), 1u);
+        EXPECT_EQ(key_value(k, k.frames[i])[0], k.values[i][0]) << "frame " << k.frames[i];
+    }
+}
+
+TEST(AnimationKeyValue, HeldBeforeTheFirstAndAfterTheLast) {
+    const AnimationKey k = key({4, 8}, {{2}, {6}});
+    for (int f : {0, 1, 3, 4}) EXPECT_EQ(key_value(k, f)[0], 2.0) << f;
+    for (int f : {8, 9, 100, 999999}) EXPECT_EQ(key_value(k, f)[0], 6.0) << f;
+    // One keyframe: held everywhere.
+    const AnimationKey one = key({5}, {{3}});
+    for (int f : {0, 5, 6, 50}) EXPECT_EQ(key_value(one, f)[0], 3.0) << f;
+}
+
+TEST(AnimationKeyValue, ArraysInterpolateEachComponent) {
+    const AnimationKey k = key({0, 4}, {{-4, 5, 1}, {4, 1, 1}});
+    const std::vector<double> v = key_value(k, 1);
+    ASSERT_EQ(v.size(), 3u);
+    EXPECT_DOUBLE_EQ(v[0], -2.0);
+    EXPECT_DOUBLE_EQ(v[1], 4.0);
+    EXPECT_DOUBLE_EQ(v[2], 1.0);
+    EXPECT_EQ(key_value(k, 0), k.values[0]);
+    EXPECT_EQ(key_value(k, 7), k.values[1]);
+}
+
+TEST(AnimationKeyValue, FrameOverridesNameTheKeyAndTheFrame) {
+    AnimationDesc a;
+    a.frames = 8;
+    a.keys.push_back(key({0, 4}, {{1}, {9}}));
+    AnimationKey pos = key({0, 4}, {{-4, 5, 1}, {4, 1, 1}});
+    pos.path = "lights.0.position";
+    a.keys.push_back(pos);
+    const std::vector<Override> o = frame_overrides(a, 2, "x.json");
+    ASSERT_EQ(o.size(), 2u);
+    EXPECT_EQ(o[0].path, "materials.red.n");
+    EXPECT_EQ(o[0].json, "5");
+    EXPECT_EQ(o[0].origin, "x.json: animation.keys.materials.red.n at frame 2 =");
+    EXPECT_EQ(o[1].path, "lights.0.position");
+    EXPECT_EQ(o[1].json, "[0, 3, 1]");
+}
+
+// --- through the loader ----------------------------------------------------------------------
+
+TEST(Animation, FramesHaveTheInterpolatedValues) {
+    const std::string json = scene_with(R"({"frames": 12, "fps": 30, "keys": {
+        "materials.red.n": [[2, 10], [6, 50]],
+        "lights.0.position": [[0, [-4, 5, 5]], [8, [4, 1, 5]]]}})");
+    const SceneDesc first = parse(json);
+    EXPECT_EQ(first.frame, 0);
+    EXPECT_EQ(first.animation.frames, 12);
+    EXPECT_EQ(first.animation.fps, 30);
+    ASSERT_EQ(first.animation.keys.size(), 2u);
+    EXPECT_FLOAT_EQ(material(first, "red").n, 10);
+    expect_vec(first.lights[0].position, {-4, 5, 5});
+
+    const float n_at[] = {10, 10, 10, 20, 30, 40, 50, 50, 50, 50, 50, 50};
+    for (int f = 0; f < 12; ++f) {
+        SCOPED_TRACE("frame " + std::to_string(f));
+        const SceneDesc s = frame_of(json, f);
+        EXPECT_EQ(s.frame, f);
+        EXPECT_EQ(s.animation.frames, 12);
+        EXPECT_FLOAT_EQ(material(s, "red").n, n_at[f]);
+        const float t = std::min(f, 8) / 8.0f;
+        expect_vec(s.lights[0].position, {-4 + 8 * t, 5 - 4 * t, 5});
+    }
+}
+
+TEST(Animation, KeyframeValuesAreExactAtKeyframes) {
+    const std::string json = scene_with(R"({"frames": 9, "keys": {
+        "materials.red.n": [[0, 0.1], [4, 0.7], [8, 33.3]],
+        "lights.0.intensity": [[0, [0.1, 0.2, 0.3]], [4, [0.7, 0.11, 0.13]]]}})");
+    EXPECT_EQ(material(frame_of(json, 0), "red").n, 0.1f);
+    EXPECT_EQ(material(frame_of(json, 4), "red").n, 0.7f);
+    EXPECT_EQ(material(frame_of(json, 8), "red").n, 33.3f);
+    const Rgb i = frame_of(json, 4).lights[0].intensity;
+    EXPECT_EQ(i.x, 0.7f);
+    EXPECT_EQ(i.y, 0.11f);
+    EXPECT_EQ(i.z, 0.13f);
+}
+
+TEST(Animation, HeldBeforeTheFirstAndAfterTheLastKeyframe) {
+    // The keys start after frame 0, and the last lies past the last frame (allowed).
+    const std::string json =
+        scene_with(R"({"frames": 10, "keys": {"objects.0.radius": [[3, 1], [5, 2], [12, 9]]}})");
+    for (int f : {0, 1, 2, 3}) EXPECT_FLOAT_EQ(frame_of(json, f).objects[0].radius, 1) << f;
+    EXPECT_FLOAT_EQ(frame_of(json, 4).objects[0].radius, 1.5f);
+    EXPECT_FLOAT_EQ(frame_of(json, 9).objects[0].radius, 6);  // 2 + 7·4/7
+
+    const std::string held =
+        scene_with(R"({"frames": 10, "keys": {"objects.0.radius": [[2, 3]]}})");
+    for (int f : {0, 2, 9}) EXPECT_FLOAT_EQ(frame_of(held, f).objects[0].radius, 3) << f;
+}
+
+TEST(Animation, ArrayValuesSetVectorsAndColours) {
+    const std::string json = scene_with(R"({"frames": 5, "keys": {
+        "objects.0.center": [[0, [0, 0, 0]], [4, [2, -4, 8]]],
+        "materials.red.kd": [[0, [0, 0, 0]], [4, [1, 0.5, 0.25]]]}})");
+    const SceneDesc s = frame_of(json, 2);
+    expect_vec(s.objects[0].center, {1, -2, 4});
+    expect_vec(material(s, "red").kd, {0.5f, 0.25f, 0.125f});
+}
+
+TEST(Animation, FramesOfASceneWithoutAnimation) {
+    const std::string json = R"({"objects": [{"type": "sphere"}]})";
+    const SceneDesc s = parse(json);
+    EXPECT_EQ(s.animation.frames, 0);
+    EXPECT_EQ(frame_of(json, 0).frame, 0);
+    try {
+        frame_of(json, 1);
+        FAIL() << "a scene without animation has only frame 0";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), "scenes/a.json: no frame 1 (frames 0 to 0)");
+    }
+    try {
+        frame_of(scene_with(R"({"frames": 4})"), 4);
+        FAIL() << "frame 4 of 4";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), "scenes/a.json: no frame 4 (frames 0 to 3)");
+    }
+    EXPECT_THROW(frame_of(scene_with(R"({"frames": 4})"), -1), InputError);
+}
+
+// --- the orbit -------------------------------------------------------------------------------
+
+std::string orbit_scene(const std::string& camera, const std::string& animation) {
+    return R"({"camera": )" + camera + R"(, "objects": [{"type": "sphere"}], "animation": )" +
+           animation + "}";
+}
+
+TEST(Animation, OrbitTurnsThePositionCounterClockwiseSeenFromUp) {
+    const std::string json =
+        orbit_scene(R"({"projection": "perspective", "position": [6, 3, 3], "look_at": [1, 2, 3]})",
+                    R"({"frames": 4, "orbit": 360})");
+    const Vec3 look_at(1, 2, 3);
+    // Frame 0 unchanged.
+    expect_vec(parse(json).camera.position, {6, 3, 3});
+    expect_vec(frame_of(json, 0).camera.position, {6, 3, 3});
+    // Frame 1: 90° about +y. Seen from above (+y), x points right and z down the page, so
+    // counter-clockwise takes +x to −z: p − look_at = (5, 1, 0) → (0, 1, −5).
+    const SceneDesc s1 = frame_of(json, 1);
+    expect_vec(s1.camera.position, {1, 3, -2});
+    expect_vec(s1.camera.look_at, look_at);
+    expect_vec(s1.camera.up, {0, 1, 0});
+    expect_vec(frame_of(json, 2).camera.position, {-4, 3, 3});
+    expect_vec(frame_of(json, 3).camera.position, {1, 3, 8});
+    for (int f = 0; f < 4; ++f) {
+        EXPECT_NEAR(length(frame_of(json, f).camera.position - look_at), std::sqrt(26.0f), 1e-5f)
+            << "the distance to look_at is kept, frame " << f;
+    }
+}
+
+TEST(Animation, OrbitIsAboutUpWhateverItsLength) {
+    // up = +z (length 3): counter-clockwise seen from +z takes +x to +y.
+    const std::string json = orbit_scene(
+        R"({"projection": "perspective", "position": [2, 0, 1], "look_at": [0, 0, 0],
+            "up": [0, 0, 3]})",
+        R"({"frames": 8, "orbit": 180})");
+    expect_vec(frame_of(json, 4).camera.position, {0, 2, 1});
+    const float h = std::sqrt(2.0f);
+    expect_vec(frame_of(json, 2).camera.position, {h, h, 1});
+    // A negative orbit turns the other way.
+    const std::string back = orbit_scene(
+        R"({"projection": "perspective", "position": [2, 0, 1], "look_at": [0, 0, 0],
+            "up": [0, 0, 1]})",
+        R"({"frames": 8, "orbit": -180})");
+    expect_vec(frame_of(back, 4).camera.position, {0, -2, 1});
+}
+
+TEST(Animation, OrbitTurnsTheKeyedPosition) {
+    // SPEC §2: the orbit comes after the keys.
+    const std::string json = orbit_scene(
+        R"({"projection": "perspective", "look_at": [0, 0, 0]})",
+        R"({"frames": 4, "orbit": 360, "keys": {"camera.position": [[0, [2, 1, 0]], [2, [4, 1, 0]]]}})");
+    expect_vec(frame_of(json, 0).camera.position, {2, 1, 0});
+    expect_vec(frame_of(json, 1).camera.position, {0, 1, -3});  // (3, 1, 0) turned 90°
+    expect_vec(frame_of(json, 2).camera.position, {-4, 1, 0});  // (4, 1, 0) turned 180°
+    expect_vec(frame_of(json, 3).camera.position, {0, 1, 4});   // (4, 1, 0) turned 270°
+}
+
+TEST(Animation, ThingsPlacedByTheCameraFollowTheOrbit) {
+    // With no lights, one light sits at the camera's upper left (SPEC §2): the camera of frame
+    // f is the orbited one, so frame f is the scene with camera.position set to where the orbit
+    // put it, the light included. So is a light without a position.
+    for (const char* lights : {"", R"(, "lights": [{"intensity": 2}])"}) {
+        SCOPED_TRACE(lights);
+        const std::string json =
+            std::string(R"({"camera": {"position": [0, 3, 10], "look_at": [0, 0.5, 0]},
+                            "objects": [{"type": "sphere"}])") +
+            lights + R"(, "animation": {"frames": 4, "orbit": 360}})";
+        const SceneDesc s = frame_of(json, 1);
+        expect_vec(s.camera.position, {10, 3, 0});
+        const SceneDesc expected =
+            parse(json, sets({"camera.position=[10,3,0]", "animation.orbit=0"}));
+        ASSERT_EQ(s.lights.size(), 1u);
+        expect_vec(s.lights[0].position, expected.lights[0].position, 1e-4f);
+        expect_vec(s.lights[0].intensity, expected.lights[0].intensity, 1e-4f);
+        // The light is not where frame 0's is.
+        EXPECT_GT(length(s.lights[0].position - parse(json).lights[0].position), 1.0f);
+    }
+}
+
+// --- keys and --set ----------------------------------------------------------------------------
+
+TEST(Animation, KeysAreSetAfterTheOverrides) {
+    const std::string json = scene_with(R"({"frames": 5, "keys": {
+        "materials.red.n": [[0, 10], [4, 50]],
+        "lights.1.position": [[0, [0, 9, 0]], [4, [4, 9, 0]]]}})");
+    // --set on an animated path: the keyframes replace it at every frame. On other paths it
+    // stays. An override may create what a key animates (lights.1) and change the animation.
+    const std::vector<Override> o = sets({"materials.red.n=500", "materials.red.ks=0.25",
+                                          "lights.1={\"intensity\": 3}", "animation.frames=6"});
+    const SceneDesc first = parse(json, o);
+    EXPECT_EQ(first.animation.frames, 6);
+    for (int f = 0; f < 6; ++f) {
+        SCOPED_TRACE("frame " + std::to_string(f));
+        const SceneDesc s = frame_of(json, f, o);
+        EXPECT_FLOAT_EQ(material(s, "red").n, 10 + 10 * std::min(f, 4));
+        expect_vec(material(s, "red").ks, Vec3(0.25f));
+        ASSERT_EQ(s.lights.size(), 2u);
+        expect_vec(s.lights[1].position, {float(std::min(f, 4)), 9, 0});
+        expect_vec(s.lights[1].intensity, Vec3(3));
+    }
+    // A --set replacing the keys animates something else.
+    const SceneDesc s =
+        frame_of(json, 2, sets({"animation.keys={\"objects.0.radius\": [[0, 1], [4, 3]]}"}));
+    EXPECT_FLOAT_EQ(s.objects[0].radius, 2);
+    EXPECT_FLOAT_EQ(material(s, "red").n, 10);
+}
+
+TEST(Animation, OptionOverridesAreReplacedByKeysToo) {
+    // --width is an override named after its option; a key on image.width wins over it.
+    const std::string json =
+        scene_with(R"({"frames": 3, "keys": {"image.width": [[0, 32], [2, 64]]}})");
+    const std::vector<Override> o = {Override{"image.width", "100", "--width"}};
+    EXPECT_EQ(frame_of(json, 0, o).image.width, 32);
+    EXPECT_EQ(frame_of(json, 1, o).image.width, 48);
+    EXPECT_EQ(frame_of(json, 2, o).image.width, 64);
+}
+
+// --- meshes ------------------------------------------------------------------------------------
+
+TEST(Animation, MeshesAreReadOnceForEveryFrame) {
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("luz_animation_test_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    const std::string json = R"({"objects": [
+        {"type": "mesh", "file": "tri.obj", "material": "gesso",
+         "transform": {"translate": [0, 0, 0]}},
+        {"type": "mesh", "file": "tri.obj", "material": "gesso"}],
+      "animation": {"frames": 6, "keys": {"objects.0.transform.translate":
+                                          [[0, [0, 0, 0]], [5, [5, 0, 0]]]}}})";
+    MeshCache cache;
+    const SceneDesc first = parse(json, {}, &cache, dir.string());
+    ASSERT_EQ(cache.size(), 1u);  // one file, read once over six frames and two objects
+    const std::shared_ptr<const MeshData> mesh = cache.begin()->second;
+    EXPECT_EQ(first.objects[0].mesh, mesh);
+    EXPECT_EQ(first.objects[1].mesh, mesh);
+
+    // Later frames take it from the cache: the file is not read again.
+    std::filesystem::remove(dir / "tri.obj");
+    for (int f : {1, 3, 5}) {
+        const SceneDesc s = frame_of(json, f, {}, &cache, dir.string());
+        EXPECT_EQ(s.objects[0].mesh, mesh) << f;
+        EXPECT_EQ(s.objects[1].mesh, mesh) << f;
+        expect_vec(s.objects[0].transform.point({0, 0, 0}), {float(f), 0, 0});
+    }
+    EXPECT_EQ(cache.size(), 1u);
+    // Without the cache, the missing file is noticed.
+    EXPECT_THROW(frame_of(json, 1, {}, nullptr, dir.string()), InputError);
+    std::filesystem::remove_all(dir);
+}
+
+// --- bad animations ------------------------------------------------------------------------------
+
+struct BadAnimation {
+    const char* animation;  // the `animation` value of scene_with()
+    const char* expected;   // what the message holds after "scenes/a.json: "
+};
+
+void PrintTo(const BadAnimation& c, std::ostream* os) { *os << c.animation << " → " << c.expected; }
+
+class BadAnimationTest : public ::testing::TestWithParam<BadAnimation> {};
+
+TEST_P(BadAnimationTest, IsRefusedNamingTheKeyPath) {
+    const BadAnimation& c = GetParam();
+    try {
+        parse(scene_with(c.animation));
+        FAIL() << "accepted: " << c.animation;
+    } catch (const InputError& e) {
+        const std::string msg = e.what();
+        EXPECT_THAT(msg, HasSubstr(std::string("scenes/a.json: ") + c.expected));
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << "one line: " << msg;
+    }
+}
+
+const BadAnimation kBadAnimations[] = {
+    // Paths that are not in the scene.
+    {R"({"frames": 3, "keys": {"materials.red.nn": [[0, 1], [2, 2]]}})",
+     "animation.keys.materials.red.nn at frame 0 = 1: materials.red.nn: unknown key"},
+    {R"({"frames": 3, "keys": {"camra.position": [[0, [1, 2, 3]]]}})",
+     "animation.keys.camra.position at frame 0 = [1, 2, 3]: camra: unknown key"},
+    {R"({"frames": 3, "keys": {"lights.3.position": [[0, [1, 2, 3]]]}})",
+     "animation.keys.lights.3.position at frame 0 = [1, 2, 3]: index 3 is past the end of lights"},
+    {R"({"frames": 3, "keys": {"objects.0.material.x": [[0, 1]]}})",
+     "animation.keys.objects.0.material.x at frame 0 = 1: objects.0.material is"},
+    {R"({"frames": 3, "keys": {"animation.frames": [[0, 3]]}})",
+     "animation.keys.animation.frames: the animation cannot animate itself"},
+    // Keyframe frames.
+    {R"({"frames": 4, "keys": {"objects.0.radius": [[2, 1], [2, 2]]}})",
+     "animation.keys.objects.0.radius.1.0: keyframes must be in increasing frame order: frame 2 "
+     "after frame 2"},
+    {R"({"frames": 4, "keys": {"objects.0.radius": [[0, 1], [3, 2], [1, 3]]}})",
+     "animation.keys.objects.0.radius.2.0: keyframes must be in increasing frame order: frame 1 "
+     "after frame 3"},
+    {R"({"frames": 4, "keys": {"objects.0.radius": [[1.5, 1]]}})",
+     "animation.keys.objects.0.radius.0.0: expected an integer, got 1.5"},
+    {R"({"frames": 4, "keys": {"objects.0.radius": [[-1, 1]]}})",
+     "animation.keys.objects.0.radius.0.0: must be in [0, 1000000], got -1"},
+    {R"({"frames": 4, "keys": {"objects.0.radius": [["0", 1]]}})",
+     "animation.keys.objects.0.radius.0.0: expected an integer"},
+    // Keyframe values.
+    {R"({"frames": 4, "keys": {"objects.0.radius": [[0, 1], [2, [1, 2]]]}})",
+     "animation.keys.objects.0.radius.1.1: every keyframe of objects.0.radius must have a value "
+     "of the same shape as the first (a number), got [1,2]"},
+    {R"({"frames": 4, "keys": {"objects.0.center": [[0, [1, 2, 3]], [2, [1, 2]]]}})",
+     "animation.keys.objects.0.center.1.1: every keyframe of objects.0.center must have a value "
+     "of the same shape as the first (an array of 3 numbers), got [1,2]"},
+    {R"({"frames": 4, "keys": {"objects.0.center": [[0, [1, 2]], [2, 3]]}})",
+     "animation.keys.objects.0.center.1.1: every keyframe of objects.0.center must have a value "
+     "of the same shape as the first (an array of 2 numbers), got 3"},
+    {R"({"frames": 4, "keys": {"objects.0.radius": [[0, "big"]]}})",
+     "animation.keys.objects.0.radius.0.1: expected a number or an array of numbers, got string "
+     "\"big\""},
+    {R"({"frames": 4, "keys": {"objects.0.center": [[0, [1, "a", 3]]]}})",
+     "animation.keys.objects.0.center.0.1.1: expected a number, got string \"a\""},
+    {R"({"frames": 4, "keys": {"objects.0.radius": [[0, true]]}})",
+     "animation.keys.objects.0.radius.0.1: expected a number or an array of numbers, got true"},
+    {R"({"frames": 4, "keys": {"objects.0.center": [[0, []]]}})",
+     "animation.keys.objects.0.center.0.1: expected a number or an array of numbers, got []"},
+    {R"({"frames": 4, "keys": {"objects.0.center": [[0, [1, 2, 3, 4]]]}})",
+     "animation.keys.objects.0.center at frame 0 = [1, 2, 3, 4]: objects.0.center: expected an "
+     "array of 3 numbers"},
+    // The shape of keys.
+    {R"({"frames": 3, "keys": []})", "animation.keys: expected an object of PATH"},
+    {R"({"frames": 3, "keys": {"objects.0.radius": []}})",
+     "animation.keys.objects.0.radius: expected an array of [frame, value] keyframes, got []"},
+    {R"({"frames": 3, "keys": {"objects.0.radius": 2}})",
+     "animation.keys.objects.0.radius: expected an array of [frame, value] keyframes"},
+    {R"({"frames": 3, "keys": {"objects.0.radius": [[0]]}})",
+     "animation.keys.objects.0.radius.0: expected a keyframe [frame, value], got [0]"},
+    {R"({"frames": 3, "keys": {"objects.0.radius": [[0, 1, 2]]}})",
+     "animation.keys.objects.0.radius.0: expected a keyframe [frame, value]"},
+    {R"({"frames": 3, "keys": {"": [[0, 1]]}})", "animation.keys: empty scene path"},
+    // frames, fps, orbit, unknown keys.
+    {R"({"frames": 0})", "animation.frames: must be in [1, 1000000], got 0"},
+    {R"({"frames": -3})", "animation.frames: must be in [1, 1000000], got -3"},
+    {R"({"frames": 2.5})", "animation.frames: expected an integer, got 2.5"},
+    {R"({"fps": 24})", "animation.frames: missing"},
+    {R"({})", "animation.frames: missing"},
+    {R"({"frames": 3, "fps": 0})", "animation.fps: must be in (0, 1000), got 0"},
+    {R"({"frames": 3, "fps": -24})", "animation.fps: must be in (0, 1000), got -24"},
+    {R"({"frames": 3, "fps": "24"})", "animation.fps: expected a number"},
+    {R"({"frames": 3, "orbit": "a"})", "animation.orbit: expected a number"},
+    {R"({"frames": 3, "fsp": 24})", "animation.fsp: unknown key (known: frames, fps, keys, orbit)"},
+    {R"(3)", "animation: expected an object, got 3"},
+    // Valid at frame 0 and at most keyframes, out of range at frame 10 only: every frame is read.
+    {R"({"frames": 11, "keys": {"materials.red.n": [[0, 1], [9, 1], [10, -1]]}})",
+     "animation.keys.materials.red.n at frame 10 = -1: materials.red.n: must be > 0, got -1"},
+    // Falling linearly from 1 to -1: the first frame out of range is named.
+    {R"({"frames": 11, "keys": {"materials.red.n": [[0, 1], [10, -1]]}})",
+     "animation.keys.materials.red.n at frame 5 = 0: materials.red.n: must be > 0, got 0"},
+    // An integer key is whole at its keyframes, not between them.
+    {R"({"frames": 3, "keys": {"image.width": [[0, 32], [3, 64]]}})",
+     "animation.keys.image.width at frame 1 = 42.666666666666664: image.width: expected an "
+     "integer"},
+};
+
+INSTANTIATE_TEST_SUITE_P(Messages, BadAnimationTest, ::testing::ValuesIn(kBadAnimations));
+
+TEST(Animation, AKeyframePastTheLastFrameIsOnlyReadUpToIt) {
+    // n falls from 1 to −1 over frames 0 … 20, but the frames stop at 9 (n = 0.1): accepted.
+    const std::string json = scene_with(R"({"frames": 10, "keys": {
+        "materials.red.n": [[0, 1], [20, -1]]}})");
+    EXPECT_NO_THROW(parse(json));
+    EXPECT_NEAR(material(frame_of(json, 9), "red").n, 0.1f, 1e-6f);
+}
+
+TEST(Animation, AnErrorBetweenKeyframesIsFoundAtLoad) {
+    // The camera reaches look_at exactly at frame 5, between keyframes 0 and 10 that are both
+    // fine: the loader refuses position == look_at, and parse_scene checks every frame.
+    const std::string json = R"({
+      "camera": {"projection": "perspective", "position": [0, 0, -5], "look_at": [0, 0, 0]},
+      "objects": [{"type": "sphere"}],
+      "animation": {"frames": 11, "keys": {"camera.position": [[0, [0, 0, -5]], [10, [0, 0, 5]]]}}
+    })";
+    for (int f : {0, 4, 6, 10}) EXPECT_NO_THROW(frame_of(json, f)) << f;
+    try {
+        frame_of(json, 5);
+        FAIL() << "frame 5 has the camera at look_at";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "scenes/a.json: animation.keys.camera.position at frame 5 = [0, 0, 0]: "
+                  "camera.look_at: must differ from camera.position, got [0, 0, 0] for both");
+    }
+    try {
+        parse(json);
+        FAIL() << "parse_scene must check every frame";
+    } catch (const InputError& e) {
+        EXPECT_THAT(e.what(), HasSubstr("animation.keys.camera.position at frame 5 = [0, 0, 0]"));
+    }
+    // Five frames stop before it: accepted.
+    EXPECT_NO_THROW(parse(json, sets({"animation.frames=5"})));
+}
+
+TEST(Animation, ABadSetOnTheAnimationIsTheSetsFault) {
+    try {
+        parse(scene_with(R"({"frames": 3})"), sets({"animation.fps=0"}));
+        FAIL() << "expected InputError";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), "--set animation.fps=0: must be in (0, 1000), got 0");
+    }
+}
+
+}  // namespace
+}  // namespace luz
