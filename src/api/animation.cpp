@@ -87,6 +87,13 @@ std::string animation_stats_json(const std::vector<RenderStats>& stats,
         total.bvh_nodes = std::max(total.bvh_nodes, s.bvh_nodes);
         total.bvh_bytes = std::max(total.bvh_bytes, s.bvh_bytes);
         total.peak_memory_bytes = std::max(total.peak_memory_bytes, s.peak_memory_bytes);
+        for (std::size_t r = 0;
+             r < s.primary_rays_by_process.size() && r < total.primary_rays_by_process.size(); ++r)
+            total.primary_rays_by_process[r] += s.primary_rays_by_process[r];
+        total.mpi_messages += s.mpi_messages;
+        total.mpi_tiles_received += s.mpi_tiles_received;
+        total.mpi_tile_bytes_received += s.mpi_tile_bytes_received;
+        total.mpi_broadcast_bytes += s.mpi_broadcast_bytes;
     }
     nlohmann::json out = stats_to_json(total, desc);
     nlohmann::json frames = nlohmann::json::array();

@@ -75,6 +75,14 @@ nlohmann::json stats_to_json(const RenderStats& s, const SceneDesc& desc) {
     if (s.region[2] > 0) {  // --region: the rectangle, as given (width and height are its size)
         out["region"] = json::array({s.region[0], s.region[1], s.region[2], s.region[3]});
     }
+    if (s.processes > 0) {  // mpirun: how the work was shared
+        out["processes"] = s.processes;
+        out["primary_rays_by_process"] = s.primary_rays_by_process;
+        out["mpi"] = json{{"messages_received_and_sent", s.mpi_messages},
+                          {"tiles_received", s.mpi_tiles_received},
+                          {"tile_bytes_received", s.mpi_tile_bytes_received},
+                          {"broadcast_bytes", s.mpi_broadcast_bytes}};
+    }
     return out;
 }
 

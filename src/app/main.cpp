@@ -1,102 +1,45 @@
-// The `luz` command: parses the command line (CLI11) and maps outcomes to exit statuses:
-// 0 success, 2 bad input (one line on standard error), 1 any other failure (SPEC §3).
-#include <CLI/CLI.hpp>
-#include <cstdio>
-#include <exception>
+// The `luz` command. Under mpirun (Open MPI sets OMPI_COMM_WORLD_SIZE), `luz render` becomes
+// `luz-mpi render` from the same folder (SPEC §3.1), so that this binary never links MPI and
+// starts as fast as ever.
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <string>
 
-#include "app/cli_options.h"
-#include "app/figures_command.h"
-#include "app/render_command.h"
-#include "app/signals.h"
-#include "app/view_command.h"
-#include "luz/luz.h"
-
-#ifndef LUZ_VERSION
-#define LUZ_VERSION "0.0.0"
-#endif
+#include "app/cli_main.h"
 
 namespace {
 
-/// Prints `message` on standard error as exactly one line.
-void print_error_line(const std::string& message) {
-    std::string line = luz::one_line(message);
-    line += '\n';
-    std::fwrite(line.data(), 1, line.size(), stderr);
-}
-
-int run(int argc, char** argv) {
-    CLI::App app{
-        "luz renders 3D scenes with the classic illumination models (ambient, Lambert, "
-        "Phong) through a z-buffer rasterizer or a ray tracer.",
-        "luz"};
-    app.set_version_flag("--version", std::string("luz ") + LUZ_VERSION);
-    app.require_subcommand(1);
-
-    luz::RenderArgs render_options;
-    CLI::App* render = app.add_subcommand("render", "render a scene to an image file");
-    luz::add_render_options(*render, render_options);
-
-    CLI::App* scenes = app.add_subcommand("scenes", "list the built-in scenes (demo:NAME)");
-    CLI::App* materials = app.add_subcommand("materials", "list the material presets");
-    luz::ViewOptions view_options;
-    CLI::App* view = app.add_subcommand("view", "interactive window: edit the scene live");
-    luz::add_view_options(*view, view_options);
-    luz::FiguresOptions figures_options;
-    CLI::App* figures = app.add_subcommand(
-        "figures", "regenerate the lecture's figures into a folder with index.html");
-    luz::add_figures_options(*figures, figures_options);
-
-    // CLI11 would only say "A subcommand is required" for a misspelt command
-    const auto is_command = [&](const std::string& name) {
-        for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
-            if (sub->get_name() == name) return true;
+/// Under mpirun with `render`: replaces this process by luz-mpi (returns only when it cannot).
+void become_luz_mpi_under_mpirun(int argc, char** argv) {
+    if (!std::getenv("OMPI_COMM_WORLD_SIZE") || argc < 2 || std::strcmp(argv[1], "render") != 0)
+        return;
+    std::error_code ec;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (ec) return;
+    const std::string mpi = (self.parent_path() / "luz-mpi").string();
+    if (::access(mpi.c_str(), X_OK) != 0) {
+        const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");
+        if (std::strcmp(size, "1") == 0) return;  // one process: render as usual
+        const char* rank = std::getenv("OMPI_COMM_WORLD_RANK");
+        if (!rank || std::strcmp(rank, "0") == 0) {
+            luz::print_error_line("luz: under mpirun, but luz was built without MPI (no " + mpi +
+                                  "; install libopenmpi-dev and rebuild)");
         }
-        return false;
-    };
-    if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1])) {
-        print_error_line(
-            std::string("luz: unknown command \"") + argv[1] +
-            "\" (expected render, view, figures, scenes or materials; see luz --help)");
-        return 2;
+        std::exit(1);
     }
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-        print_error_line(std::string("luz: ") + e.what());
-        return 2;
-    }
-
-    if (*scenes) {
-        luz::print_scenes(stdout);
-        return 0;
-    }
-    if (*materials) {
-        luz::print_materials(stdout);
-        return 0;
-    }
-    if (*view) return luz::run_view(view_options);
-    if (*figures) return luz::run_figures(figures_options);
-    return luz::run_render(render_options);
+    argv[0] = const_cast<char*>(mpi.c_str());
+    ::execv(mpi.c_str(), argv);
+    luz::print_error_line("luz: cannot run " + mpi + ": " + std::strerror(errno));
+    std::exit(1);  // never render N copies of the whole image
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const luz::Interrupted& e) {
-        print_error_line("luz: interrupted");  // nothing written (app/signals.h)
-        return 128 + e.signal;
-    } catch (const luz::InputError& e) {
-        print_error_line(e.what());  // already names the file and the place
-        return 2;
-    } catch (const std::exception& e) {
-        print_error_line(std::string("luz: ") + e.what());
-        return 1;
-    } catch (...) {
-        print_error_line("luz: unexpected failure");
-        return 1;
-    }
+    become_luz_mpi_under_mpirun(argc, argv);
+    return luz::luz_main(argc, argv, nullptr);
 }

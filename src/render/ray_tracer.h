@@ -33,6 +33,7 @@ inline constexpr uint64_t kTimedSampleEvery = 256;
 inline uint64_t work_of(const TraceCounters& c) {
     return c.primary + c.shadow + c.reflection + c.refraction;
 }
+inline uint64_t primary_rays_of(const TraceCounters& c) { return c.primary; }
 
 /// A sample tracing more rays than this means an exploding ray tree (the render warns once).
 inline constexpr uint64_t kExplodingTreeRays = 4096;

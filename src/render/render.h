@@ -15,6 +15,7 @@ namespace luz {
 struct AaMask;
 struct TermPlanes;
 class Checkpoint;
+class TileShare;
 
 /// The pixels [x0, x1) × [y0, y1).
 struct PixelRect {
@@ -52,6 +53,10 @@ struct RenderControl {
     /// its pixels are then those of the whole render, bit for bit; the image keeps the whole
     /// size and its other pixels are left as they were (the ray pipelines: unwritten).
     PixelRect region;
+    /// When set, the work items are shared with other processes (MPI, render/tile_share.h):
+    /// only those handed to this process are rendered here; on the process that gathers, the
+    /// image is then the whole render's, on the others only their part of it.
+    TileShare* share = nullptr;
 };
 
 /// Renders `scene` with `settings` (image, camera, pipeline, lights, materials …); fills

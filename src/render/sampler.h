@@ -20,6 +20,7 @@
 #include "render/checkpoint.h"
 #include "render/parallel.h"
 #include "render/render.h"
+#include "render/work_items.h"
 #include "scene/input_error.h"
 #include "scene/scene_desc.h"
 
@@ -49,6 +50,13 @@ inline constexpr int kSamplerTile = 16;
 /// ray_tracer.h overloads it); progress is reported sooner after costly pixels.
 template <class Counters>
 uint64_t work_of(const Counters&) {
+    return 0;
+}
+
+/// The primary rays a work item's counters have counted (ray_tracer.h overloads it): how a
+/// render shared among processes reports each one's share (SPEC §3.1).
+template <class Counters>
+uint64_t primary_rays_of(const Counters&) {
     return 0;
 }
 
@@ -409,205 +417,195 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
         const PixelRect r = tile_of(t).clipped(window);
         return r.empty() ? uint64_t{0} : static_cast<uint64_t>(r.width()) * r.height();
     };
-    auto cancelled = [&] {
-        return control.cancel && control.cancel->load(std::memory_order_relaxed);
-    };
     // Progress by pixels: adaptive counts each pixel in both passes.
     PixelProgress progress(
         control, static_cast<uint64_t>(window.width()) * window.height() * (adaptive ? 2 : 1));
-    // Checkpoint (--checkpoint): items finished by an earlier run are read back instead of
-    // rendered; each item finished now is kept, unless the render was cancelled meanwhile.
+    // Each pass: the tiles' bytes are their counters and pixels (checkpoint and MPI).
     Checkpoint* const checkpoint = control.checkpoint;
     if (checkpoint) checkpoint->start(items);
-    auto restored = [&](size_t item, auto&& read) {
-        if (!checkpoint || !checkpoint->done(item)) return false;
-        std::string_view bytes = checkpoint->data(item);
-        read(bytes);
-        if (!bytes.empty()) throw InputError("--checkpoint: damaged checkpoint (a tile is long)");
-        return true;
-    };
-    auto keep = [&](size_t item, auto&& write) {
-        if (!checkpoint || cancelled()) return;
-        std::string bytes;
-        write(bytes);
-        checkpoint->finish(item, std::move(bytes));
-    };
+    const auto elsewhere = [&](size_t t) { progress.add(pixels_of(t)); };
 
     switch (aa.mode) {
-        case AaMode::none:
-            parallel_items(control.threads, tiles.size(), [&](size_t item) {
-                if (cancelled()) return;
-                const size_t t = tiles[item];
-                const PixelRect r = tile_of(t).clipped(window);
-                if (restored(t, [&](std::string_view& in) {
-                        read_raw(in, counters[t]);
-                        read_raw(in, counts[t]);
-                        read_rect(in, out, r);
-                    })) {
-                    progress.add(pixels_of(t));
-                    return;
-                }
-                Counters c{};
-                {
-                    PixelProgress::Item<Counters> tick{progress, c};
-                    for (int y = r.y0; y < r.y1; ++y) {
-                        for (int x = r.x0; x < r.x1; ++x) {
-                            put(out, x, y, colour(x + 0.5f, y + 0.5f, c));
-                            tick.pixel();
-                        }
-                    }
-                }
-                counters[t] = c;
-                counts[t].samples = static_cast<uint64_t>(r.width()) * r.height();
-                keep(t, [&](std::string& o) {
-                    append_raw(o, counters[t]);
-                    append_raw(o, counts[t]);
-                    append_rect(o, out, r);
-                });
-            });
+        case AaMode::none: {
+            auto code = TileCode{[&](size_t t) {
+                                     const PixelRect r = tile_of(t).clipped(window);
+                                     Counters c{};
+                                     {
+                                         PixelProgress::Item<Counters> tick{progress, c};
+                                         for (int y = r.y0; y < r.y1; ++y) {
+                                             for (int x = r.x0; x < r.x1; ++x) {
+                                                 put(out, x, y, colour(x + 0.5f, y + 0.5f, c));
+                                                 tick.pixel();
+                                             }
+                                         }
+                                     }
+                                     counters[t] = c;
+                                     counts[t].samples =
+                                         static_cast<uint64_t>(r.width()) * r.height();
+                                 },
+                                 [&](size_t t, std::string& o) {
+                                     append_raw(o, counters[t]);
+                                     append_raw(o, counts[t]);
+                                     append_rect(o, out, tile_of(t).clipped(window));
+                                 },
+                                 [&](size_t t, std::string_view& in) {
+                                     read_raw(in, counters[t]);
+                                     read_raw(in, counts[t]);
+                                     read_rect(in, out, tile_of(t).clipped(window));
+                                 }};
+            run_pass(control, checkpoint, tiles, 0, false, code, elsewhere,
+                     [&](size_t t) { return primary_rays_of(counters[t]); });
             break;
+        }
         case AaMode::grid: {
             const GridSpec g = GridSpec::from(aa, width, height);
-            parallel_items(control.threads, tiles.size(), [&](size_t item) {
-                if (cancelled()) return;
-                const size_t t = tiles[item];
-                const PixelRect tile = tile_of(t).clipped(window), region = g.region(tile);
-                if (restored(t, [&](std::string_view& in) {
-                        read_raw(in, counters[t]);
-                        read_raw(in, counts[t]);
-                        read_rect(in, out, tile);
-                    })) {
-                    progress.add(pixels_of(t));
-                    return;
-                }
-                const int s = g.s, stride = region.width() * s;
-                std::vector<S>& buf = grid_scratch_for_this_thread<S>();
-                Counters c{};
-                PixelProgress::Item<Counters> tick{progress, c};
-                buf.resize(static_cast<size_t>(stride) * region.height() * s);
-                for (int j = region.y0; j < region.y1; ++j) {
-                    for (int i = region.x0; i < region.x1; ++i) {
-                        const bool inside =
-                            i >= tile.x0 && i < tile.x1 && j >= tile.y0 && j < tile.y1;
-                        for (int b = 0; b < s; ++b) {
-                            S* dst = &buf[static_cast<size_t>((j - region.y0) * s + b) * stride +
-                                          (i - region.x0) * s];
-                            for (int a = 0; a < s; ++a) {
-                                float x, y;
-                                g.position(i, j, a, b, x, y);
-                                if (inside || g.needed(tile, x, y)) {
-                                    dst[a] = colour(x, y, c);
-                                    ++counts[t].samples;
-                                } else {
-                                    dst[a] = S{};
+            auto code = TileCode{
+                [&](size_t t) {
+                    const PixelRect tile = tile_of(t).clipped(window), region = g.region(tile);
+                    const int s = g.s, stride = region.width() * s;
+                    std::vector<S>& buf = grid_scratch_for_this_thread<S>();
+                    Counters c{};
+                    PixelProgress::Item<Counters> tick{progress, c};
+                    buf.resize(static_cast<size_t>(stride) * region.height() * s);
+                    for (int j = region.y0; j < region.y1; ++j) {
+                        for (int i = region.x0; i < region.x1; ++i) {
+                            const bool inside =
+                                i >= tile.x0 && i < tile.x1 && j >= tile.y0 && j < tile.y1;
+                            for (int b = 0; b < s; ++b) {
+                                S* dst =
+                                    &buf[static_cast<size_t>((j - region.y0) * s + b) * stride +
+                                         (i - region.x0) * s];
+                                for (int a = 0; a < s; ++a) {
+                                    float x, y;
+                                    g.position(i, j, a, b, x, y);
+                                    if (inside || g.needed(tile, x, y)) {
+                                        dst[a] = colour(x, y, c);
+                                        ++counts[t].samples;
+                                    } else {
+                                        dst[a] = S{};
+                                    }
                                 }
                             }
+                            if (inside) tick.pixel();
                         }
-                        if (inside) tick.pixel();
                     }
-                }
-                counters[t] = c;
-                filter_tile(g, tile, region, buf.data(), out);
-                keep(t, [&](std::string& o) {
+                    counters[t] = c;
+                    filter_tile(g, tile, region, buf.data(), out);
+                },
+                [&](size_t t, std::string& o) {
                     append_raw(o, counters[t]);
                     append_raw(o, counts[t]);
-                    append_rect(o, out, tile);
-                });
-            });
+                    append_rect(o, out, tile_of(t).clipped(window));
+                },
+                [&](size_t t, std::string_view& in) {
+                    read_raw(in, counters[t]);
+                    read_raw(in, counts[t]);
+                    read_rect(in, out, tile_of(t).clipped(window));
+                }};
+            run_pass(control, checkpoint, tiles, 0, false, code, elsewhere,
+                     [&](size_t t) { return primary_rays_of(counters[t]); });
             break;
         }
         case AaMode::adaptive: {
             // Pass 1: one sample at every pixel corner, each computed once.
             // A region's pixels need the corners [x0, x1] × [y0, y1]: the tiles of the region
-            // grown by one pixel to the right and below compute them.
+            // grown by one pixel to the right and below compute them. Every process needs
+            // them all for pass 2.
             std::vector<S> corners(static_cast<size_t>(width + 1) * (height + 1));
             const PixelRect grown = corner_window(window, width, height);
             const std::vector<size_t> corner_tiles = tiles_within(grown);
-            parallel_items(control.threads, corner_tiles.size(), [&](size_t item) {
-                if (cancelled()) return;
-                const size_t t = corner_tiles[item];
-                const PixelRect r = corner_rect(tile_of(t).clipped(grown), width, height);
-                const auto corner_row = [&](int y) {
-                    return corners.data() + static_cast<size_t>(y) * (width + 1) + r.x0;
-                };
-                if (restored(t, [&](std::string_view& in) {
-                        read_raw(in, counters[t]);
-                        read_raw(in, counts[t]);
-                        for (int y = r.y0; y < r.y1; ++y)
-                            for (int x = 0; x < r.width(); ++x) read_raw(in, corner_row(y)[x]);
-                    })) {
-                    progress.add(pixels_of(t));
-                    return;
-                }
-                Counters c{};
-                {
-                    PixelProgress::Item<Counters> tick{progress, c};
-                    for (int y = r.y0; y < r.y1; ++y) {
-                        for (int x = r.x0; x < r.x1; ++x) {
-                            corners[static_cast<size_t>(y) * (width + 1) + x] =
-                                colour(static_cast<float>(x), static_cast<float>(y), c);
-                            // the region's pixels: its corners less its last row and column
-                            if (x < window.x1 && y < window.y1) tick.pixel();
-                        }
-                    }
-                }
-                counters[t] = c;
-                counts[t].samples = static_cast<uint64_t>(r.width()) * r.height();
-                keep(t, [&](std::string& o) {
-                    append_raw(o, counters[t]);
-                    append_raw(o, counts[t]);
-                    for (int y = r.y0; y < r.y1; ++y)
-                        for (int x = 0; x < r.width(); ++x) append_raw(o, corner_row(y)[x]);
-                });
-            });
-            // Pass 2: refine the pixels whose corners differ.
+            const auto corners_of = [&](size_t t) {
+                return corner_rect(tile_of(t).clipped(grown), width, height);
+            };
+            const auto corner_row = [&](const PixelRect& r, int y) {
+                return corners.data() + static_cast<size_t>(y) * (width + 1) + r.x0;
+            };
+            auto pass1 =
+                TileCode{[&](size_t t) {
+                             const PixelRect r = corners_of(t);
+                             Counters c{};
+                             {
+                                 PixelProgress::Item<Counters> tick{progress, c};
+                                 for (int y = r.y0; y < r.y1; ++y) {
+                                     for (int x = r.x0; x < r.x1; ++x) {
+                                         corners[static_cast<size_t>(y) * (width + 1) + x] = colour(
+                                             static_cast<float>(x), static_cast<float>(y), c);
+                                         // the region's pixels: its corners less its last row and
+                                         // column
+                                         if (x < window.x1 && y < window.y1) tick.pixel();
+                                     }
+                                 }
+                             }
+                             counters[t] = c;
+                             counts[t].samples = static_cast<uint64_t>(r.width()) * r.height();
+                         },
+                         [&](size_t t, std::string& o) {
+                             const PixelRect r = corners_of(t);
+                             append_raw(o, counters[t]);
+                             append_raw(o, counts[t]);
+                             for (int y = r.y0; y < r.y1; ++y)
+                                 for (int x = 0; x < r.width(); ++x)
+                                     append_raw(o, corner_row(r, y)[x]);
+                         },
+                         [&](size_t t, std::string_view& in) {
+                             const PixelRect r = corners_of(t);
+                             read_raw(in, counters[t]);
+                             read_raw(in, counts[t]);
+                             for (int y = r.y0; y < r.y1; ++y)
+                                 for (int x = 0; x < r.width(); ++x)
+                                     read_raw(in, corner_row(r, y)[x]);
+                         }};
+            run_pass(control, checkpoint, corner_tiles, 0, true, pass1, elsewhere,
+                     [&](size_t t) { return primary_rays_of(counters[t]); });
+            // Pass 2: refine the pixels whose corners differ (item tile_count + t).
             const AdaptiveSpec spec = AdaptiveSpec::from(aa, width, height);
             const float inv_S = 1.0f / static_cast<float>(spec.lattice());
-            parallel_items(control.threads, tiles.size(), [&](size_t item) {
-                if (cancelled()) return;
-                const size_t t = tiles[item];
-                const size_t k = tile_count + t;
+            const auto mask_levels = [&](size_t t, auto&& each) {  // the mask's bytes of a tile
+                if (!mask) return;
                 const PixelRect r = tile_of(t).clipped(window);
-                const auto mask_levels = [&](auto&& each) {  // the mask's bytes of the tile
-                    if (!mask) return;
-                    for (int y = r.y0; y < r.y1; ++y)
-                        for (int x = r.x0; x < r.x1; ++x)
-                            each(mask->level[static_cast<size_t>(y) * width + x]);
-                };
-                if (restored(k, [&](std::string_view& in) {
-                        read_raw(in, counters[k]);
-                        read_raw(in, counts[k]);
-                        read_rect(in, out, r);
-                        mask_levels([&](uint8_t& v) { read_raw(in, v); });
-                    })) {
-                    progress.add(pixels_of(t));
-                    return;
-                }
-                Counters c{};
-                struct Fine {
-                    Colour& fn;
-                    Counters& c;
-                    float inv_S;
-                    void begin_pixel(int, int) {}
-                    S colour(int i, int j, int k, int l) {
-                        return fn(static_cast<float>(i) + static_cast<float>(k) * inv_S,
-                                  static_cast<float>(j) + static_cast<float>(l) * inv_S, c);
+                for (int y = r.y0; y < r.y1; ++y)
+                    for (int x = r.x0; x < r.x1; ++x)
+                        each(mask->level[static_cast<size_t>(y) * width + x]);
+            };
+            auto pass2 = TileCode{
+                [&](size_t t) {
+                    const size_t k = tile_count + t;
+                    const PixelRect r = tile_of(t).clipped(window);
+                    Counters c{};
+                    struct Fine {
+                        Colour& fn;
+                        Counters& c;
+                        float inv_S;
+                        void begin_pixel(int, int) {}
+                        S colour(int i, int j, int k, int l) {
+                            return fn(static_cast<float>(i) + static_cast<float>(k) * inv_S,
+                                      static_cast<float>(j) + static_cast<float>(l) * inv_S, c);
+                        }
+                    };
+                    Fine fine{colour, c, inv_S};
+                    {
+                        PixelProgress::Item<Counters> tick{progress, c};
+                        refine_tile(spec, r, corners.data(), fine, out, mask, counts[k],
+                                    [&tick] { tick.pixel(); });
                     }
-                };
-                Fine fine{colour, c, inv_S};
-                {
-                    PixelProgress::Item<Counters> tick{progress, c};
-                    refine_tile(spec, r, corners.data(), fine, out, mask, counts[k],
-                                [&tick] { tick.pixel(); });
-                }
-                counters[k] = c;
-                keep(k, [&](std::string& o) {
+                    counters[k] = c;
+                },
+                [&](size_t t, std::string& o) {
+                    const size_t k = tile_count + t;
                     append_raw(o, counters[k]);
                     append_raw(o, counts[k]);
-                    append_rect(o, out, r);
-                    mask_levels([&](uint8_t& v) { append_raw(o, v); });
-                });
-            });
+                    append_rect(o, out, tile_of(t).clipped(window));
+                    mask_levels(t, [&](uint8_t& v) { append_raw(o, v); });
+                },
+                [&](size_t t, std::string_view& in) {
+                    const size_t k = tile_count + t;
+                    read_raw(in, counters[k]);
+                    read_raw(in, counts[k]);
+                    read_rect(in, out, tile_of(t).clipped(window));
+                    mask_levels(t, [&](uint8_t& v) { read_raw(in, v); });
+                }};
+            run_pass(control, checkpoint, tiles, tile_count, false, pass2, elsewhere,
+                     [&](size_t t) { return primary_rays_of(counters[tile_count + t]); });
             break;
         }
     }

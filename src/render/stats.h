@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 namespace luz {
 
@@ -23,6 +24,14 @@ struct RenderStats {
     uint64_t peak_memory_bytes = 0;
     /// --region X0,Y0,X1,Y1 (SPEC §3): the rectangle rendered; all 0 for the whole image.
     int region[4] = {0, 0, 0, 0};
+    /// Under mpirun (SPEC §3.1): the number of processes (0: not shared) and the primary rays
+    /// each one traced, by rank; they add up to rays_primary.
+    int processes = 0;
+    std::vector<uint64_t> primary_rays_by_process;
+    /// Under mpirun, what rank 0 received: messages, tiles and their bytes, and the bytes it
+    /// broadcast (adaptive's corners) — the costs docs/SCALING.md's model starts from.
+    uint64_t mpi_messages = 0, mpi_tiles_received = 0, mpi_tile_bytes_received = 0,
+             mpi_broadcast_bytes = 0;
 
     /// Adds another thread's counters (times and sizes are not summed).
     void add_counters(const RenderStats& o) {

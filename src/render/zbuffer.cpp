@@ -13,6 +13,7 @@
 #include "render/parallel.h"
 #include "render/rasterizer.h"
 #include "render/sampler.h"
+#include "render/work_items.h"
 #include "render/zbuffer_antialias.h"
 #include "render/zbuffer_shade.h"
 #include "scene/camera.h"
@@ -75,53 +76,110 @@ void render_tiles(const ZbufferFrame& f, const RenderControl& control, const Gri
     const size_t reports =
         aa.mode == AaMode::adaptive ? tiles.size() + tiles_within(grown).size() : tiles.size();
     std::atomic<size_t> tiles_done{0};
-    const auto cancelled = [&] {
-        return control.cancel && control.cancel->load(std::memory_order_relaxed);
-    };
-    const auto report = [&] {
+    const auto report = [&](size_t) {
         const size_t done = ++tiles_done;
         if (control.progress) control.progress(static_cast<double>(done) / reports);
     };
+    // A tile's bytes (MPI; the zbuffer keeps no checkpoint): its counters, then its pixels.
+    const auto write_stats = [](std::string& o, const RenderStats& s) {
+        for (uint64_t v :
+             {s.rays_primary, s.rays_shadow, s.rays_reflection, s.rays_refraction,
+              s.tests_primitive, s.tests_bounds, s.pixels_refined, s.samples, s.triangles})
+            append_raw(o, v);
+    };
+    const auto read_stats = [](std::string_view& in, RenderStats& s) {
+        for (uint64_t* v :
+             {&s.rays_primary, &s.rays_shadow, &s.rays_reflection, &s.rays_refraction,
+              &s.tests_primitive, &s.tests_bounds, &s.pixels_refined, &s.samples, &s.triangles})
+            read_raw(in, *v);
+    };
+    const auto rays = [](size_t) { return uint64_t{0}; };  // the zbuffer traces no rays
+    // Colours (and terms) of tile t, counted in tile_stats[base + t], with adaptive's levels
+    // when `levels`.
+    const auto pixel_code = [&](auto&& render, size_t base, bool levels) {
+        return TileCode{
+            render,
+            [&, base, levels](size_t t, std::string& o) {
+                write_stats(o, tile_stats[base + t]);
+                append_rect(o, out, raster.tile_rect(t));
+                if (levels && control.aa_mask) {
+                    const PixelRect r = raster.tile_rect(t);
+                    for (int y = r.y0; y < r.y1; ++y)
+                        for (int x = r.x0; x < r.x1; ++x)
+                            append_raw(o, control.aa_mask->level[size_t(y) * img.width + x]);
+                }
+            },
+            [&, base, levels](size_t t, std::string_view& in) {
+                read_stats(in, tile_stats[base + t]);
+                read_rect(in, out, raster.tile_rect(t));
+                if (levels && control.aa_mask) {
+                    const PixelRect r = raster.tile_rect(t);
+                    for (int y = r.y0; y < r.y1; ++y)
+                        for (int x = r.x0; x < r.x1; ++x)
+                            read_raw(in, control.aa_mask->level[size_t(y) * img.width + x]);
+                }
+            }};
+    };
     switch (aa.mode) {
-        case AaMode::none:
-            parallel_items(control.threads, tiles.size(), [&](size_t item) {
-                if (cancelled()) return;
-                const size_t t = tiles[item];
-                const PixelRect r = raster.tile_rect(t);
-                Fragment frags[kRasterTile * kRasterTile];
-                uint32_t tests[kTerms ? kRasterTile * kRasterTile : 1];
-                raster.rasterize(t, raster.centres(r), frags, kTerms ? tests : nullptr);
-                shade_tile(f, r.x0, r.y0, r.width(), r.height(), frags, tests, out, tile_stats[t]);
-                report();
-            });
+        case AaMode::none: {
+            auto code = pixel_code(
+                [&](size_t t) {
+                    const PixelRect r = raster.tile_rect(t);
+                    Fragment frags[kRasterTile * kRasterTile];
+                    uint32_t tests[kTerms ? kRasterTile * kRasterTile : 1];
+                    raster.rasterize(t, raster.centres(r), frags, kTerms ? tests : nullptr);
+                    shade_tile(f, r.x0, r.y0, r.width(), r.height(), frags, tests, out,
+                               tile_stats[t]);
+                    report(t);
+                },
+                0, false);
+            run_pass(control, nullptr, tiles, 0, false, code, report, rays);
             break;
-        case AaMode::grid:
-            parallel_items(control.threads, tiles.size(), [&](size_t item) {
-                if (cancelled()) return;
-                const size_t t = tiles[item];
-                grid_tile(f, t, grid, out, tile_stats[t]);
-                report();
-            });
+        }
+        case AaMode::grid: {
+            auto code = pixel_code(
+                [&](size_t t) {
+                    grid_tile(f, t, grid, out, tile_stats[t]);
+                    report(t);
+                },
+                0, false);
+            run_pass(control, nullptr, tiles, 0, false, code, report, rays);
             break;
+        }
         case AaMode::adaptive: {
-            // Pass 1: every pixel corner (x, y integers), rasterized and shaded once.
+            // Pass 1: every pixel corner (x, y integers), rasterized and shaded once; every
+            // process needs them all for pass 2.
             std::vector<S> corners(static_cast<size_t>(img.width + 1) * (img.height + 1));
             const std::vector<size_t> corner_tiles = tiles_within(grown);
-            parallel_items(control.threads, corner_tiles.size(), [&](size_t item) {
-                if (cancelled()) return;
-                const size_t t = corner_tiles[item];
-                adaptive_corners_tile(f, t, corners.data(), tile_stats[t]);
-                report();
-            });
+            const auto corner_values = [&](size_t t, auto&& each) {
+                const PixelRect c = corner_rect(raster.tile_rect(t), img.width, img.height);
+                for (int y = c.y0; y < c.y1; ++y)
+                    for (int x = c.x0; x < c.x1; ++x)
+                        each(corners[static_cast<size_t>(y) * (img.width + 1) + x]);
+            };
+            auto pass1 = TileCode{[&](size_t t) {
+                                      adaptive_corners_tile(f, t, corners.data(), tile_stats[t]);
+                                      report(t);
+                                  },
+                                  [&](size_t t, std::string& o) {
+                                      write_stats(o, tile_stats[t]);
+                                      corner_values(t, [&](const S& v) { append_raw(o, v); });
+                                  },
+                                  [&](size_t t, std::string_view& in) {
+                                      read_stats(in, tile_stats[t]);
+                                      corner_values(t, [&](S& v) { read_raw(in, v); });
+                                  }};
+            run_pass(control, nullptr, corner_tiles, 0, true, pass1, report, rays);
             // Pass 2: pixels whose corners differ are refined on their finest lattice.
             const AdaptiveSpec spec = AdaptiveSpec::from(aa, img.width, img.height);
-            parallel_items(control.threads, tiles.size(), [&](size_t item) {
-                if (cancelled()) return;
-                const size_t t = tiles[item];
-                adaptive_refine_tile(f, t, spec, corners.data(), out, control.aa_mask,
-                                     tile_stats[tile_count + t]);
-                report();
-            });
+            auto pass2 = pixel_code(
+                [&](size_t t) {
+                    adaptive_refine_tile(f, t, spec, corners.data(), out, control.aa_mask,
+                                         tile_stats[tile_count + t]);
+                    report(t);
+                },
+                tile_count, true);
+            run_pass(control, nullptr, tiles, tile_count, false, pass2, report, rays);
             break;
         }
     }

@@ -426,7 +426,22 @@ std::atomic<uint64_t> g_max_text_file_bytes{UINT64_MAX};
 
 void set_max_text_file_bytes(uint64_t bytes) { g_max_text_file_bytes.store(bytes); }
 
+namespace {
+TextReader& source_slot() {
+    static TextReader source;
+    return source;
+}
+}  // namespace
+
+void set_file_source(TextReader source) { source_slot() = std::move(source); }
+const TextReader& file_source() { return source_slot(); }
+
 std::optional<std::string> read_text_file(const std::string& path, std::string& reason) {
+    if (const TextReader& source = file_source()) return source(path, reason);
+    return read_text_file_from_disk(path, reason);
+}
+
+std::optional<std::string> read_text_file_from_disk(const std::string& path, std::string& reason) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) {
         reason = "is a directory";

@@ -19,9 +19,20 @@ namespace luz {
 using TextReader =
     std::function<std::optional<std::string>(const std::string& path, std::string& reason)>;
 
-/// Reads a file from disk (the default TextReader). Refuses what is not a regular file (a
-/// folder, /dev/zero, a pipe) and a file larger than set_max_text_file_bytes(), before reading.
+/// Reads a file through the file source (below; the default TextReader): from disk, refusing
+/// what is not a regular file (a folder, /dev/zero, a pipe) and a file larger than
+/// set_max_text_file_bytes(), before reading.
 std::optional<std::string> read_text_file(const std::string& path, std::string& reason);
+
+/// read_text_file() from disk, whatever the file source.
+std::optional<std::string> read_text_file_from_disk(const std::string& path, std::string& reason);
+
+/// Where the loader reads every file it reads — the scene file, OBJ and MTL files: from disk
+/// (an empty source, the default) or from `source`. Under mpirun, rank 0 records what it reads
+/// and the other processes read the same bytes from what it sent (src/mpi/). Process-wide:
+/// set it before loading, from one thread.
+void set_file_source(TextReader source);
+const TextReader& file_source();
 
 /// The largest OBJ or MTL file read_text_file() reads (default: no limit); `luz render` sets a
 /// share of --max-memory, so that a mesh too large is refused rather than half-loaded.

@@ -16,6 +16,7 @@
 #include "scene/demo_scenes.h"
 #include "scene/json_readers.h"
 #include "scene/material_table.h"
+#include "scene/obj_loader.h"
 #include "scene/object_reader.h"
 #include "scene/overrides.h"
 #include "scene/settings_readers.h"
@@ -177,6 +178,12 @@ SceneText read_scene_text(const std::string& source) {
         return {std::string(demo->json), source, ""};
     }
 
+    if (const TextReader& from = file_source()) {  // under mpirun: what rank 0 read
+        std::string reason;
+        std::optional<std::string> text = from(source, reason);
+        if (!text) throw InputError(source + ": cannot read: " + reason);
+        return {std::move(*text), source, std::filesystem::path(source).parent_path().string()};
+    }
     std::error_code ec;
     if (std::filesystem::is_directory(source, ec)) {
         throw InputError(source + ": cannot read: is a directory");

@@ -1,0 +1,171 @@
+// luz-mpi: `luz render` across the processes of `mpirun -np N` (SPEC §3.1). `luz` runs it
+// when started by mpirun (app/main.cpp). Rank 0 runs the ordinary command line, reading the
+// scene and its files while recording them; before its first frame it sends them to every
+// other process (scene_bundle.h); each frame's tiles are then shared (mpi_tile_share.h) and
+// gathered on rank 0, which alone writes files and draws the progress bar. The others load
+// the same scene from what rank 0 sent and follow it frame by frame, silently.
+#include <mpi.h>
+
+#include <CLI/CLI.hpp>
+#include <climits>
+#include <cstdio>
+#include <string>
+
+#include "app/cli_main.h"
+#include "app/cli_options.h"
+#include "app/signals.h"
+#include "luz/luz.h"
+#include "mpi/mpi_tile_share.h"
+#include "mpi/scene_bundle.h"
+#include "mpi/wire.h"
+
+namespace luz::mpi {
+namespace {
+
+/// Rank 0 → all: the bundle (its size, then its bytes).
+void broadcast_bundle(const SceneBundle& b) {
+    std::string bytes = encode(b);
+    uint64_t size = bytes.size();
+    MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    for (uint64_t at = 0; at < size; at += 1u << 30) {
+        const int n = static_cast<int>(std::min<uint64_t>(size - at, 1u << 30));
+        MPI_Bcast(bytes.data() + at, n, MPI_BYTE, 0, MPI_COMM_WORLD);
+    }
+}
+
+std::string receive_bundle_bytes() {
+    uint64_t size = 0;
+    MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    std::string bytes(size, '\0');
+    for (uint64_t at = 0; at < size; at += 1u << 30) {
+        const int n = static_cast<int>(std::min<uint64_t>(size - at, 1u << 30));
+        MPI_Bcast(bytes.data() + at, n, MPI_BYTE, 0, MPI_COMM_WORLD);
+    }
+    return bytes;
+}
+
+/// One frame with its tiles shared among the processes; `passes` numbers the message tags.
+Frame render_shared(const Scene& scene, const SceneDesc& desc, RenderOptions options, int& passes) {
+    MpiTileShare share(MPI_COMM_WORLD, passes);
+    options.control.share = &share;
+    Frame frame = render(scene, desc, options);
+    passes += share.passes() + 1;
+    int size = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    frame.stats.processes = size;
+    frame.stats.primary_rays_by_process = share.primary_rays_by_process();
+    frame.stats.mpi_messages = share.wire().messages;
+    frame.stats.mpi_tiles_received = share.wire().tiles;
+    frame.stats.mpi_tile_bytes_received = share.wire().tile_bytes;
+    frame.stats.mpi_broadcast_bytes = share.wire().broadcast_bytes;
+    return frame;
+}
+
+int run_rank0(int argc, char** argv) {
+    SceneBundle bundle;
+    set_file_source(recording_source(bundle));
+    bool sent = false;
+    int passes = 0;
+    const FrameRenderer render_frame = [&](const Scene& scene, const SceneDesc& desc,
+                                           const RenderOptions& options) {
+        if (!sent) {
+            if (options.control.checkpoint) {
+                throw InputError(
+                    "--checkpoint: not available under mpirun yet (render in one "
+                    "process, or without --checkpoint)");
+            }
+            broadcast_bundle(bundle);  // status -1: render
+            sent = true;
+        }
+        return render_shared(scene, desc, options, passes);
+    };
+    const int status = luz_main(argc, argv, &render_frame);
+    if (!sent) {  // stopped before rendering: everyone exits with this status, silently
+        bundle.files.clear();
+        bundle.status = status;
+        broadcast_bundle(bundle);
+        return status;
+    }
+    // Failed or interrupted while the others render: end them all (the message is printed).
+    if (status != 0) MPI_Abort(MPI_COMM_WORLD, status);
+    return status;
+}
+
+/// The frames of `o`, rendered in step with rank 0; nothing is written.
+void follow_rank0(const RenderArgs& o) {
+    const std::vector<Override> overrides = overrides_of(o);
+    set_max_text_file_bytes((o.max_memory ? *o.max_memory : default_memory_limit()) / 4);
+    const Animation animation = Animation::load(o.scene, overrides);
+    const SceneDesc& first = animation.first();
+    const FrameRange range = o.frames ? parse_frames(*o.frames, animation) : FrameRange{};
+    RenderOptions options;
+    options.control.threads = o.threads;
+    options.control.cancel = &interrupt_flag();
+    options.want_aa_mask = !o.aa_mask_file.empty();
+    if (!o.aovs.empty()) options.aovs = parse_aov_list(o.aovs, "--aov " + o.aovs);
+    if (o.region) options.region = parse_region(*o.region, first.image);
+    Scene scene;
+    SceneDesc built_from;
+    int passes = 0;
+    for (int f = range.first; f < range.end; ++f) {
+        const SceneDesc desc = f == 0 ? first : animation.frame(f);
+        if (!scene || needs_rebuild(built_from, desc)) {
+            scene = build(desc);
+            built_from = desc;
+        }
+        set_interrupt_exits_now(false);
+        render_shared(scene, desc, options, passes);
+        throw_if_interrupted();
+    }
+}
+
+int run_other(int argc, char** argv, int rank, int size) {
+    install_interrupt_handlers();
+    set_interrupt_exits_now(true);
+    const std::string who = "luz: process " + std::to_string(rank) + " of " + std::to_string(size);
+    SceneBundle bundle;
+    try {
+        bundle = decode_bundle(receive_bundle_bytes());
+    } catch (const WireError& e) {
+        print_error_line(who + ": cannot read what rank 0 sent: " + e.what());
+        MPI_Abort(MPI_COMM_WORLD, 1);
+    }
+    if (bundle.status != -1) return bundle.status;  // rank 0 has said why
+    set_file_source(bundle_source(bundle));
+    try {
+        CLI::App app{"luz-mpi", "luz"};
+        RenderArgs o;
+        add_render_options(*app.add_subcommand("render"), o);
+        app.require_subcommand(1);
+        app.parse(argc, argv);
+        follow_rank0(o);
+        return 0;
+    } catch (const Interrupted& e) {
+        return 128 + e.signal;  // rank 0 reports it
+    } catch (const std::exception& e) {
+        // Rank 0 read the same scene without error: what this process got differs.
+        print_error_line(who + ": " + e.what());
+        MPI_Abort(MPI_COMM_WORLD, 1);
+    }
+    return 1;
+}
+
+}  // namespace
+}  // namespace luz::mpi
+
+int main(int argc, char** argv) {
+    int provided = 0;
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided);
+    int rank = 0, size = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    if (provided < MPI_THREAD_SERIALIZED) {
+        if (rank == 0) luz::print_error_line("luz: this MPI library cannot serve threads");
+        MPI_Finalize();
+        return 1;
+    }
+    const int status =
+        rank == 0 ? luz::mpi::run_rank0(argc, argv) : luz::mpi::run_other(argc, argv, rank, size);
+    MPI_Finalize();
+    return status;
+}

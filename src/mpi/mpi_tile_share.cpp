@@ -1,0 +1,268 @@
+// MpiTileShare: tiles handed out on request by rank 0, their bytes gathered there (and, for a
+// pass every process needs, broadcast back). Every MPI call is made by one thread at a time
+// (MPI_THREAD_SERIALIZED): on rank 0 by its server thread during a pass and by the main
+// thread between passes; elsewhere under mutex_. Waits poll, so that a cancelled render (a
+// signal) stops waiting at once.
+#include "mpi/mpi_tile_share.h"
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <exception>
+
+#include "mpi/wire.h"
+
+namespace luz::mpi {
+namespace {
+
+constexpr uint64_t kRequest = 1, kFinal = 2;
+constexpr size_t kMaxBatch = 64;    ///< most items in one reply
+constexpr int kTagBase = 16;        ///< below: other messages
+constexpr int kTagPasses = 100000;  ///< pass numbers wrap (tags stay < 2^18)
+
+/// Sleeps a little longer each time nothing happened (20 µs up to 0.2 ms).
+struct Backoff {
+    int us = 0;
+    void idle() {
+        us = std::min(200, us ? us * 2 : 20);
+        std::this_thread::sleep_for(std::chrono::microseconds(us));
+    }
+    void busy() { us = 0; }
+};
+
+std::exception_ptr g_server_error;  // set by the server thread, rethrown by end_pass
+
+}  // namespace
+
+MpiTileShare::MpiTileShare(MPI_Comm comm, int pass_base) : comm_(comm), pass_base_(pass_base) {
+    MPI_Comm_rank(comm_, &rank_);
+    MPI_Comm_size(comm_, &size_);
+    rays_.assign(static_cast<size_t>(size_), 0);
+}
+
+MpiTileShare::~MpiTileShare() {
+    if (server_.joinable()) server_.join();
+}
+
+size_t MpiTileShare::preassigned(size_t count, int processes) {
+    return std::clamp<size_t>(count / (4 * static_cast<size_t>(processes)), 1, 8);
+}
+
+int MpiTileShare::work_tag() const { return kTagBase + 2 * ((pass_base_ + pass_) % kTagPasses); }
+int MpiTileShare::reply_tag() const { return work_tag() + 1; }
+
+void MpiTileShare::begin_pass(size_t count, bool everyone, std::function<void(size_t)> arrived,
+                              const std::atomic<bool>* cancel) {
+    ++pass_;
+    count_ = count;
+    everyone_ = everyone;
+    arrived_ = std::move(arrived);
+    cancel_ = cancel;
+    queue_.clear();
+    exhausted_ = false;
+    mine_.assign(count, 0);
+    pending_.clear();
+    pending_count_ = 0;
+    const size_t p = preassigned(count, size_);
+    for (size_t i = rank_ * p; i < std::min(count, (rank_ + 1) * p); ++i) queue_.push_back(i);
+    if (rank_ == 0) {
+        next_free_ = std::min(count, static_cast<size_t>(size_) * p);
+        bytes_.assign(count, {});
+        have_.assign(count, 0);
+        g_server_error = nullptr;
+        if (size_ > 1)
+            server_ = std::thread([this] {
+                try {
+                    serve();
+                } catch (...) {
+                    g_server_error = std::current_exception();
+                }
+            });
+    }
+}
+
+bool MpiTileShare::wait(MPI_Request& r) {
+    Backoff backoff;
+    for (;;) {
+        int done = 0;
+        MPI_Test(&r, &done, MPI_STATUS_IGNORE);
+        if (done) return true;
+        if (cancelled()) return false;
+        backoff.idle();
+    }
+}
+
+void MpiTileShare::send_work(bool final) {
+    std::string message;
+    put_u64(message, final ? kFinal : kRequest);
+    put_u64(message, pending_count_);
+    message += pending_;
+    pending_.clear();
+    pending_count_ = 0;
+    if (message.size() > static_cast<size_t>(INT_MAX))
+        throw std::runtime_error("mpirun: a message of more than 2 GiB (fewer AOVs or tiles?)");
+    MPI_Request r;
+    MPI_Isend(message.data(), static_cast<int>(message.size()), MPI_BYTE, 0, work_tag(), comm_, &r);
+    wait(r);
+}
+
+size_t MpiTileShare::next() {
+    std::lock_guard lock(mutex_);
+    if (cancelled()) return kNone;
+    if (queue_.empty() && rank_ == 0) {
+        const size_t i = next_free_.fetch_add(1);
+        if (i >= count_) return kNone;
+        queue_.push_back(i);
+    }
+    if (queue_.empty() && !exhausted_) {
+        send_work(false);
+        uint64_t reply[1 + kMaxBatch];
+        MPI_Request r;
+        MPI_Irecv(reply, static_cast<int>(sizeof reply), MPI_BYTE, 0, reply_tag(), comm_, &r);
+        if (!wait(r)) return kNone;
+        const uint64_t n = std::min<uint64_t>(reply[0], kMaxBatch);
+        for (uint64_t k = 0; k < n; ++k)
+            if (reply[1 + k] < count_) queue_.push_back(reply[1 + k]);
+        exhausted_ = n == 0;
+    }
+    if (queue_.empty()) return kNone;
+    const size_t i = queue_.front();
+    queue_.pop_front();
+    mine_[i] = 1;
+    return i;
+}
+
+void MpiTileShare::finished(size_t i, std::string bytes, uint64_t primary_rays) {
+    std::lock_guard lock(mutex_);
+    if (rank_ == 0) {
+        rays_[0] += primary_rays;
+        if (everyone_) {
+            bytes_[i] = std::move(bytes);
+            have_[i] = 1;
+        }
+        return;
+    }
+    put_u64(pending_, i);
+    put_u64(pending_, primary_rays);
+    put_bytes(pending_, bytes);
+    ++pending_count_;
+}
+
+void MpiTileShare::take(int from, std::string_view message) {
+    WireReader in(message);
+    in.u64();  // the kind, read by serve()
+    const uint64_t n = in.u64();
+    for (uint64_t k = 0; k < n; ++k) {
+        const uint64_t item = in.u64(), rays = in.u64();
+        const std::string_view bytes = in.bytes();
+        if (item >= count_ || have_[item])
+            throw WireError("process " + std::to_string(from) + " sent tile " +
+                            std::to_string(item) + " of " + std::to_string(count_) + " twice");
+        bytes_[item] = std::string(bytes);
+        have_[item] = 1;
+        rays_[static_cast<size_t>(from)] += rays;
+        ++wire_.tiles;
+        wire_.tile_bytes += bytes.size();
+        if (arrived_) arrived_(item);
+    }
+    if (!in.done()) throw WireError("a message from process " + std::to_string(from) + " is long");
+}
+
+void MpiTileShare::serve() {
+    int finals = 0;
+    Backoff backoff;
+    std::string message;
+    while (finals < size_ - 1 && !cancelled()) {
+        int flag = 0;
+        MPI_Status status;
+        MPI_Iprobe(MPI_ANY_SOURCE, work_tag(), comm_, &flag, &status);
+        if (!flag) {
+            backoff.idle();
+            continue;
+        }
+        backoff.busy();
+        int n = 0;
+        MPI_Get_count(&status, MPI_BYTE, &n);
+        message.resize(static_cast<size_t>(n));
+        MPI_Recv(message.data(), n, MPI_BYTE, status.MPI_SOURCE, work_tag(), comm_,
+                 MPI_STATUS_IGNORE);
+        ++wire_.messages;
+        if (message.size() < 8) throw WireError("a message is truncated");
+        uint64_t kind;
+        std::memcpy(&kind, message.data(), sizeof kind);
+        take(status.MPI_SOURCE, message);
+        if (kind == kFinal) {
+            ++finals;
+            continue;
+        }
+        // A request: a batch shrinking as the pass ends (guided), so the last items spread.
+        const size_t free = next_free_.load();
+        const size_t left = free < count_ ? count_ - free : 0;
+        const size_t batch =
+            std::clamp<size_t>(left / (2 * static_cast<size_t>(size_)), 1, kMaxBatch);
+        const size_t first = next_free_.fetch_add(batch);
+        uint64_t reply[1 + kMaxBatch];
+        reply[0] = 0;
+        for (size_t i = first; i < first + batch && i < count_; ++i) reply[1 + reply[0]++] = i;
+        MPI_Send(reply, static_cast<int>((1 + reply[0]) * sizeof(uint64_t)), MPI_BYTE,
+                 status.MPI_SOURCE, reply_tag(), comm_);
+        ++wire_.messages;
+    }
+}
+
+std::vector<std::pair<size_t, std::string>> MpiTileShare::end_pass() {
+    std::vector<std::pair<size_t, std::string>> elsewhere;
+    // Every process needs every item: rank 0 broadcasts them all, in chunks below 2 GiB.
+    const auto broadcast = [&](std::string& all) -> bool {
+        uint64_t size = all.size();
+        MPI_Request r;
+        MPI_Ibcast(&size, 1, MPI_UINT64_T, 0, comm_, &r);
+        if (!wait(r)) return false;
+        all.resize(size);
+        for (uint64_t at = 0; at < size; at += 1u << 30) {
+            const int n = static_cast<int>(std::min<uint64_t>(size - at, 1u << 30));
+            MPI_Ibcast(all.data() + at, n, MPI_BYTE, 0, comm_, &r);
+            if (!wait(r)) return false;
+        }
+        wire_.broadcast_bytes += size;
+        return true;
+    };
+    if (rank_ == 0) {
+        if (server_.joinable()) server_.join();
+        if (g_server_error) std::rethrow_exception(g_server_error);
+        if (cancelled()) return elsewhere;
+        if (everyone_ && size_ > 1) {
+            std::string all;
+            put_u64(all, count_);
+            for (size_t i = 0; i < count_; ++i) {
+                if (!have_[i])
+                    throw std::logic_error("mpirun: a tile is missing at the end of a pass");
+                put_u64(all, i);
+                put_bytes(all, bytes_[i]);
+            }
+            if (!broadcast(all)) return elsewhere;
+        }
+        for (size_t i = 0; i < count_; ++i)
+            if (have_[i] && !mine_[i]) elsewhere.emplace_back(i, std::move(bytes_[i]));
+        return elsewhere;
+    }
+    if (cancelled()) return elsewhere;
+    send_work(true);
+    if (everyone_) {
+        std::string all;
+        if (!broadcast(all)) return elsewhere;
+        WireReader in(all);
+        const uint64_t n = in.u64();
+        if (n != count_)
+            throw WireError("rank 0 sent " + std::to_string(n) + " tiles, not " +
+                            std::to_string(count_));
+        for (uint64_t k = 0; k < n; ++k) {
+            const uint64_t item = in.u64();
+            const std::string_view bytes = in.bytes();
+            if (item < count_ && !mine_[item]) elsewhere.emplace_back(item, std::string(bytes));
+        }
+    }
+    return elsewhere;
+}
+
+}  // namespace luz::mpi

@@ -1,0 +1,84 @@
+// TileShare over MPI (SPEC §3.1), like OSPRay's MPI offload mode: each process starts with a
+// few items of the pass given out in advance, then asks rank 0 for more; rank 0 renders too,
+// answers the requests from a thread of its own and gathers every item's bytes.
+#pragma once
+
+#include <mpi.h>
+
+#include <atomic>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "render/tile_share.h"
+
+namespace luz::mpi {
+
+/// Bytes sent in one render, by kind (docs/SCALING.md).
+struct WireCounts {
+    uint64_t messages = 0;    ///< requests, replies and finals (rank 0's view)
+    uint64_t tile_bytes = 0;  ///< tile payload received by rank 0
+    uint64_t tiles = 0;       ///< tiles received by rank 0
+    uint64_t broadcast_bytes = 0;
+};
+
+class MpiTileShare final : public TileShare {
+  public:
+    /// One per frame render on every process of `comm`. `pass_base` numbers this render's
+    /// passes (their message tags) apart from the previous render's.
+    MpiTileShare(MPI_Comm comm, int pass_base);
+    ~MpiTileShare() override;
+
+    void begin_pass(size_t count, bool everyone, std::function<void(size_t)> arrived,
+                    const std::atomic<bool>* cancel) override;
+    size_t next() override;
+    void finished(size_t i, std::string bytes, uint64_t primary_rays) override;
+    std::vector<std::pair<size_t, std::string>> end_pass() override;
+
+    /// Rank 0: the primary rays each process traced in this render so far.
+    const std::vector<uint64_t>& primary_rays_by_process() const { return rays_; }
+    const WireCounts& wire() const { return wire_; }
+    /// The passes this render used (the next render's pass_base starts after them).
+    int passes() const { return pass_; }
+
+    /// Items each process is given before it asks (the same on every process).
+    static size_t preassigned(size_t count, int processes);
+
+  private:
+    bool cancelled() const { return cancel_ && cancel_->load(std::memory_order_relaxed); }
+    int work_tag() const;
+    int reply_tag() const;
+    void serve();  // rank 0's thread
+    void take(int from, std::string_view message);
+    bool wait(MPI_Request& r);  // false when cancelled first
+    void send_work(bool final);
+
+    MPI_Comm comm_;
+    int rank_ = 0, size_ = 1;
+    int pass_base_ = 0, pass_ = -1;
+    size_t count_ = 0;
+    bool everyone_ = false;
+    std::function<void(size_t)> arrived_;
+    const std::atomic<bool>* cancel_ = nullptr;
+
+    std::mutex mutex_;
+    std::deque<size_t> queue_;  ///< items given to this process, not yet started
+    bool exhausted_ = false;    ///< rank 0 has no more for this process
+    std::vector<char> mine_;    ///< items rendered here
+    std::string pending_;       ///< finished items not yet sent (workers)
+    uint64_t pending_count_ = 0;
+
+    // rank 0
+    std::atomic<size_t> next_free_{0};  ///< first item not given out
+    std::vector<std::string> bytes_;    ///< per item, when this process keeps it
+    std::vector<char> have_;
+    std::vector<uint64_t> rays_;
+    std::thread server_;
+    WireCounts wire_;
+};
+
+}  // namespace luz::mpi
