@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 #include <climits>
+#include <csignal>
 #include <cstdio>
 #include <string>
 
@@ -166,6 +167,11 @@ int main(int argc, char** argv) {
     }
     const int status =
         rank == 0 ? luz::mpi::run_rank0(argc, argv) : luz::mpi::run_other(argc, argv, rank, size);
+    // This process's part is over. Once one process exits non-zero, mpirun ends the others with
+    // SIGTERM (they may still be in MPI_Finalize): that must end them silently, not print
+    // "luz: interrupted" after the one message rank 0 printed.
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
     MPI_Finalize();
     return status;
 }

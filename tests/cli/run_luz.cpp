@@ -1,4 +1,5 @@
-// Test helpers for tests/cli: fork + exec of the real binary with pipes or a pseudo-terminal.
+// Test helpers for tests/cli: fork + exec of the real binary (or another program) with pipes or a
+// pseudo-terminal.
 #include "cli/run_luz.h"
 
 #include <fcntl.h>
@@ -38,7 +39,22 @@ int wait_status(pid_t pid) {
 }  // namespace
 
 RunResult run_luz(const std::vector<std::string>& args, const std::filesystem::path& cwd) {
-    std::string binary = LUZ_BINARY;
+    return run_program(LUZ_BINARY, args, cwd);
+}
+
+std::string find_on_path(const std::string& name) {
+    const char* path = std::getenv("PATH");
+    std::stringstream dirs(path ? path : "");
+    for (std::string d; std::getline(dirs, d, ':');) {
+        const std::filesystem::path p = std::filesystem::path(d.empty() ? "." : d) / name;
+        if (std::filesystem::is_regular_file(p) && ::access(p.c_str(), X_OK) == 0) return p;
+    }
+    return "";
+}
+
+RunResult run_program(const std::string& program, const std::vector<std::string>& args,
+                      const std::filesystem::path& cwd) {
+    std::string binary = program;
     std::vector<char*> argv = make_argv(args, binary);
     int out_pipe[2], err_pipe[2];
     if (pipe(out_pipe) != 0 || pipe(err_pipe) != 0) return {};
@@ -54,7 +70,7 @@ RunResult run_luz(const std::vector<std::string>& args, const std::filesystem::p
         close(err_pipe[0]);
         close(out_pipe[1]);
         close(err_pipe[1]);
-        execv(binary.c_str(), argv.data());
+        execvp(binary.c_str(), argv.data());  // a name without '/' is looked up on PATH
         _exit(127);
     }
     close(out_pipe[1]);

@@ -1,5 +1,5 @@
-// Test helpers for tests/cli: run the real `luz` binary in a folder and capture what it says,
-// and a fixture giving each test its own temporary folder.
+// Test helpers for tests/cli: run the real `luz` binary (or another program, e.g. mpirun) in a
+// folder and capture what it says, and a fixture giving each test its own temporary folder.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -20,6 +20,13 @@ struct RunResult {
 /// Runs LUZ_BINARY with `args` in folder `cwd`, stdin from /dev/null, stdout and stderr
 /// captured through pipes (so neither is a terminal).
 RunResult run_luz(const std::vector<std::string>& args, const std::filesystem::path& cwd);
+
+/// Runs any program the same way: `program` is a path, or a name looked up on PATH (mpirun).
+RunResult run_program(const std::string& program, const std::vector<std::string>& args,
+                      const std::filesystem::path& cwd);
+
+/// The path of `name` on PATH (an executable file), or "" when there is none.
+std::string find_on_path(const std::string& name);
 
 /// The same with standard input, output and error on a pseudo-terminal; `out` gets everything.
 RunResult run_luz_on_terminal(const std::vector<std::string>& args,

@@ -1,0 +1,98 @@
+// A process that dies ends the whole `mpirun -np N luz render` within seconds (SPEC §3.1):
+// SIGKILL to one worker, or SIGINT to mpirun, during a long render: a non-zero exit within
+// 10 s, no output or temporary file left behind, and no luz-mpi process of the run remaining.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include "mpi/mpi_run.h"
+
+namespace luz::test {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// Long enough to be under way for many seconds (about 16 s of 2 cores here in Release).
+const std::vector<std::string> kSlowRender = {
+    "render",  "demo:whitted", "--width", "1600",      "--height",  "1200", "--aa",
+    "grid",    "--samples",    "36",      "--threads", "1",         "-o",   "out.png",
+    "--stats", "s.json",       "--aov",   "depth",     "--aa-mask", "m.png"};
+
+class ProcessFailure : public MpiTest {
+  protected:
+    void TearDown() override {
+        if (run_.pid > 0 && wait_for_exit(run_.pid, 0) == -1) {  // failed early: clean up
+            kill(run_.pid, SIGKILL);
+            wait_for_exit(run_.pid, 10);
+        }
+        if (!run_.err_path.empty()) fs::remove(run_.err_path);
+        MpiTest::TearDown();
+    }
+
+    /// Starts the slow render under 3 processes; returns once the three luz-mpi processes run
+    /// and have been rendering for a moment.
+    void start_slow_render() {
+        const fs::path err = dir_.parent_path() / (dir_.filename().string() + ".err");
+        run_ = start_mpirun(3, kSlowRender, dir_, err);
+        ASSERT_GT(run_.pid, 0);
+        const auto deadline = Clock::now() + std::chrono::seconds(30);
+        while (luz_mpi_processes(dir_).size() < 3) {
+            ASSERT_EQ(wait_for_exit(run_.pid, 0), -1) << "mpirun ended early: " << err_text();
+            ASSERT_LT(Clock::now(), deadline) << "the luz-mpi processes did not appear";
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+        pids_ = luz_mpi_processes(dir_);
+        ASSERT_EQ(pids_.size(), 3u);
+        std::this_thread::sleep_for(std::chrono::milliseconds(800));  // the render under way
+        ASSERT_EQ(wait_for_exit(run_.pid, 0), -1) << "mpirun ended early: " << err_text();
+    }
+
+    /// Asserts mpirun ends non-zero within 10 s of the signal, leaving no file behind, and
+    /// that the run's luz-mpi processes are gone a few seconds later.
+    void expect_whole_run_ends() {
+        const auto sent = Clock::now();
+        const int status = wait_for_exit(run_.pid, 10);
+        const double seconds = std::chrono::duration<double>(Clock::now() - sent).count();
+        ASSERT_NE(status, -1) << "mpirun still runs 10 s later: " << err_text();
+        run_.pid = -1;
+        EXPECT_NE(status, 0) << err_text();
+        EXPECT_LT(seconds, 10.0);
+        RecordProperty("seconds_to_exit", std::to_string(seconds));
+        // No output, statistics, mask, per-term or temporary file.
+        const std::set<std::string> left = list_dir(dir_);
+        EXPECT_TRUE(left.empty()) << *left.begin();
+        const auto deadline = Clock::now() + std::chrono::seconds(5);
+        while (!luz_mpi_processes(dir_).empty() && Clock::now() < deadline)
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        EXPECT_TRUE(luz_mpi_processes(dir_).empty()) << "a luz-mpi process of the run remains";
+        for (const pid_t p : luz_mpi_processes(dir_)) kill(p, SIGKILL);  // never leave one behind
+    }
+
+    std::string err_text() const { return read_file(run_.err_path); }
+
+    Background run_;
+    std::vector<pid_t> pids_;
+};
+
+TEST_F(ProcessFailure, KilledWorkerEndsTheRun) {
+    ASSERT_NO_FATAL_FAILURE(start_slow_render());
+    pid_t victim = -1;
+    for (const pid_t p : pids_)
+        if (mpi_rank_of(p) == 1) victim = p;
+    ASSERT_GT(victim, 0) << "no process of rank 1";
+    ASSERT_EQ(kill(victim, SIGKILL), 0);
+    expect_whole_run_ends();
+}
+
+TEST_F(ProcessFailure, SigintToMpirunEndsTheRun) {
+    ASSERT_NO_FATAL_FAILURE(start_slow_render());
+    ASSERT_EQ(kill(run_.pid, SIGINT), 0);
+    expect_whole_run_ends();
+}
+
+}  // namespace
+}  // namespace luz::test
