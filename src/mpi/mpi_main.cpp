@@ -70,11 +70,6 @@ int run_rank0(int argc, char** argv) {
     const FrameRenderer render_frame = [&](const Scene& scene, const SceneDesc& desc,
                                            const RenderOptions& options) {
         if (!sent) {
-            if (options.control.checkpoint) {
-                throw InputError(
-                    "--checkpoint: not available under mpirun yet (render in one "
-                    "process, or without --checkpoint)");
-            }
             broadcast_bundle(bundle);  // status -1: render
             sent = true;
         }

@@ -51,7 +51,13 @@ size_t MpiTileShare::preassigned(size_t count, int processes) {
 int MpiTileShare::work_tag() const { return kTagBase + 2 * ((pass_base_ + pass_) % kTagPasses); }
 int MpiTileShare::reply_tag() const { return work_tag() + 1; }
 
-void MpiTileShare::begin_pass(size_t count, bool everyone, std::function<void(size_t)> arrived,
+void MpiTileShare::restored(size_t i, std::string bytes, uint64_t primary_rays) {
+    rays_[0] += primary_rays;
+    restored_.emplace_back(i, std::move(bytes));
+}
+
+void MpiTileShare::begin_pass(size_t count, bool everyone, const std::vector<char>& restored,
+                              std::function<void(size_t, std::string_view)> arrived,
                               const std::atomic<bool>* cancel) {
     ++pass_;
     count_ = count;
@@ -63,12 +69,27 @@ void MpiTileShare::begin_pass(size_t count, bool everyone, std::function<void(si
     mine_.assign(count, 0);
     pending_.clear();
     pending_count_ = 0;
-    const size_t p = preassigned(count, size_);
-    for (size_t i = rank_ * p; i < std::min(count, (rank_ + 1) * p); ++i) queue_.push_back(i);
+    // What rank 0 holds already (from its checkpoint) is rendered by no one.
+    std::vector<char> held = rank_ == 0 ? restored : std::vector<char>(count, 0);
+    held.resize(count, 0);
+    if (size_ > 1) MPI_Bcast(held.data(), static_cast<int>(count), MPI_CHAR, 0, comm_);
+    todo_.clear();
+    for (size_t i = 0; i < count; ++i)
+        if (!held[i]) todo_.push_back(i);
+    const size_t n = todo_.size(), p = preassigned(n, size_);
+    for (size_t k = rank_ * p; k < std::min(n, (rank_ + 1) * p); ++k) queue_.push_back(todo_[k]);
     if (rank_ == 0) {
-        next_free_ = std::min(count, static_cast<size_t>(size_) * p);
+        next_free_ = std::min(n, static_cast<size_t>(size_) * p);
         bytes_.assign(count, {});
         have_.assign(count, 0);
+        for (auto& [i, bytes] : restored_) {
+            mine_[i] = 1;  // read back here already
+            if (everyone_) {
+                bytes_[i] = std::move(bytes);
+                have_[i] = 1;
+            }
+        }
+        restored_.clear();
         g_server_error = nullptr;
         if (size_ > 1)
             server_ = std::thread([this] {
@@ -110,9 +131,9 @@ size_t MpiTileShare::next() {
     std::lock_guard lock(mutex_);
     if (cancelled()) return kNone;
     if (queue_.empty() && rank_ == 0) {
-        const size_t i = next_free_.fetch_add(1);
-        if (i >= count_) return kNone;
-        queue_.push_back(i);
+        const size_t k = next_free_.fetch_add(1);
+        if (k >= todo_.size()) return kNone;
+        queue_.push_back(todo_[k]);
     }
     if (queue_.empty() && !exhausted_) {
         send_work(false);
@@ -163,7 +184,7 @@ void MpiTileShare::take(int from, std::string_view message) {
         rays_[static_cast<size_t>(from)] += rays;
         ++wire_.tiles;
         wire_.tile_bytes += bytes.size();
-        if (arrived_) arrived_(item);
+        if (arrived_) arrived_(item, bytes_[item]);
     }
     if (!in.done()) throw WireError("a message from process " + std::to_string(from) + " is long");
 }
@@ -196,14 +217,15 @@ void MpiTileShare::serve() {
             continue;
         }
         // A request: a batch shrinking as the pass ends (guided), so the last items spread.
-        const size_t free = next_free_.load();
-        const size_t left = free < count_ ? count_ - free : 0;
+        const size_t n_todo = todo_.size(), free = next_free_.load();
+        const size_t left = free < n_todo ? n_todo - free : 0;
         const size_t batch =
             std::clamp<size_t>(left / (2 * static_cast<size_t>(size_)), 1, kMaxBatch);
         const size_t first = next_free_.fetch_add(batch);
         uint64_t reply[1 + kMaxBatch];
         reply[0] = 0;
-        for (size_t i = first; i < first + batch && i < count_; ++i) reply[1 + reply[0]++] = i;
+        for (size_t k = first; k < first + batch && k < n_todo; ++k)
+            reply[1 + reply[0]++] = todo_[k];
         MPI_Send(reply, static_cast<int>((1 + reply[0]) * sizeof(uint64_t)), MPI_BYTE,
                  status.MPI_SOURCE, reply_tag(), comm_);
         ++wire_.messages;

@@ -11,7 +11,9 @@
 #include <functional>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "render/tile_share.h"
@@ -33,8 +35,10 @@ class MpiTileShare final : public TileShare {
     MpiTileShare(MPI_Comm comm, int pass_base);
     ~MpiTileShare() override;
 
-    void begin_pass(size_t count, bool everyone, std::function<void(size_t)> arrived,
+    void begin_pass(size_t count, bool everyone, const std::vector<char>& restored,
+                    std::function<void(size_t, std::string_view)> arrived,
                     const std::atomic<bool>* cancel) override;
+    void restored(size_t i, std::string bytes, uint64_t primary_rays) override;
     size_t next() override;
     void finished(size_t i, std::string bytes, uint64_t primary_rays) override;
     std::vector<std::pair<size_t, std::string>> end_pass() override;
@@ -62,10 +66,12 @@ class MpiTileShare final : public TileShare {
     int pass_base_ = 0, pass_ = -1;
     size_t count_ = 0;
     bool everyone_ = false;
-    std::function<void(size_t)> arrived_;
+    std::function<void(size_t, std::string_view)> arrived_;
     const std::atomic<bool>* cancel_ = nullptr;
 
     std::mutex mutex_;
+    std::vector<size_t> todo_;  ///< the pass's items not restored, in order: what is handed out
+    std::vector<std::pair<size_t, std::string>> restored_;  ///< rank 0, before begin_pass
     std::deque<size_t> queue_;  ///< items given to this process, not yet started
     bool exhausted_ = false;    ///< rank 0 has no more for this process
     std::vector<char> mine_;    ///< items rendered here
@@ -73,7 +79,7 @@ class MpiTileShare final : public TileShare {
     uint64_t pending_count_ = 0;
 
     // rank 0
-    std::atomic<size_t> next_free_{0};  ///< first item not given out
+    std::atomic<size_t> next_free_{0};  ///< first position of todo_ not given out
     std::vector<std::string> bytes_;    ///< per item, when this process keeps it
     std::vector<char> have_;
     std::vector<uint64_t> rays_;

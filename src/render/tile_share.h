@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -21,11 +22,19 @@ class TileShare {
 
     /// A pass of `count` items begins (every process of the render calls it, in the same
     /// order). `everyone` when every process needs every item's bytes at the end (adaptive's
-    /// corners); otherwise only the process that gathers (rank 0). `arrived(i)` is called on
-    /// the gathering process, from any thread, as item i rendered elsewhere comes in (progress).
-    /// The pass ends early, without waiting for the others, once `cancel` is set.
-    virtual void begin_pass(size_t count, bool everyone, std::function<void(size_t)> arrived,
+    /// corners); otherwise only the process that gathers (rank 0). On the gathering process,
+    /// `restored[i]` marks the items it already holds (read back from a --checkpoint; it has
+    /// given their bytes with restored()): no process renders them; elsewhere it is ignored.
+    /// `arrived(i, bytes)` is called on the gathering process, from any thread, as item i
+    /// rendered elsewhere comes in (progress, the checkpoint). The pass ends early, without
+    /// waiting for the others, once `cancel` is set.
+    virtual void begin_pass(size_t count, bool everyone, const std::vector<char>& restored,
+                            std::function<void(size_t, std::string_view)> arrived,
                             const std::atomic<bool>* cancel) = 0;
+
+    /// Before begin_pass, on the gathering process: item `i` is held already (its bytes and
+    /// primary rays), as if rendered here.
+    virtual void restored(size_t i, std::string bytes, uint64_t primary_rays) = 0;
 
     /// The next item to render here, or kNone when this process has no more in this pass.
     /// Any thread.

@@ -60,9 +60,28 @@ void run_pass(const RenderControl& control, Checkpoint* checkpoint, const std::v
         });
         return;
     }
+    // Shared: the gathering process reads back what the checkpoint holds, and no process
+    // renders it; the tiles that arrive from the others are kept in the checkpoint as they come.
     TileShare& share = *control.share;
+    std::vector<char> held(list.size(), 0);
+    if (checkpoint) {
+        for (size_t item = 0; item < list.size(); ++item) {
+            const size_t t = list[item];
+            if (!checkpoint->done(base + t)) continue;
+            read_all(t, checkpoint->data(base + t),
+                     "--checkpoint: damaged checkpoint (a tile is long)");
+            elsewhere(t);
+            held[item] = 1;
+            share.restored(item, std::string(checkpoint->data(base + t)), rays(t));
+        }
+    }
     share.begin_pass(
-        list.size(), everyone, [&](size_t item) { elsewhere(list[item]); }, control.cancel);
+        list.size(), everyone, held,
+        [&](size_t item, std::string_view bytes) {
+            elsewhere(list[item]);
+            if (checkpoint) checkpoint->finish(base + list[item], std::string(bytes));
+        },
+        control.cancel);
     const int threads = resolve_threads(control.threads);
     parallel_items(threads, static_cast<size_t>(threads), [&](size_t) {
         for (size_t item; !cancelled() && (item = share.next()) != TileShare::kNone;) {
@@ -70,6 +89,7 @@ void run_pass(const RenderControl& control, Checkpoint* checkpoint, const std::v
             code.render(t);
             std::string bytes;
             code.write(t, bytes);
+            if (checkpoint && !cancelled()) checkpoint->finish(base + t, bytes);
             share.finished(item, std::move(bytes), rays(t));
         }
     });
