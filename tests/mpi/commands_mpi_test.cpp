@@ -1,5 +1,5 @@
 // Under mpirun (SPEC §3.1): bad input exits 2 with luz's one message (whatever the number of
-// processes), --checkpoint is refused, commands other than render run as usual, and the
+// processes), commands other than render run as usual, and the
 // ordinary luz does not link MPI.
 #include <gtest/gtest.h>
 
@@ -89,17 +89,6 @@ TEST_F(BadInputMpi, Exit2WithLuzsOneMessageAndNoFile) {
         EXPECT_EQ(without_mpirun_notices(r.err), r1.err) << r.err;
         EXPECT_EQ(list_dir(many), inputs);
     }
-}
-
-TEST_F(BadInputMpi, CheckpointIsRefusedWithOneMessage) {
-    const RunResult r = run_mpirun(3,
-                                   {"render", "demo:whitted", "--width", "64", "--height", "48",
-                                    "--checkpoint", "c.ckpt", "-o", "x.png"},
-                                   dir_);
-    EXPECT_EQ(r.status, 2) << r.err;
-    EXPECT_EQ(count_lines_containing(r.err, "--checkpoint"), 1) << r.err;
-    EXPECT_EQ(count_lines(without_mpirun_notices(r.err)), 1) << r.err;
-    EXPECT_TRUE(list_dir(dir_).empty());
 }
 
 class CommandsMpi : public MpiTest {};

@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <nlohmann/json.hpp>
+#include <set>
 #include <thread>
 
 #include "mpi/mpi_run.h"
@@ -35,9 +37,9 @@ class ProcessFailure : public MpiTest {
 
     /// Starts the slow render under 3 processes; returns once the three luz-mpi processes run
     /// and have been rendering for a moment.
-    void start_slow_render() {
+    void start_slow_render(const std::vector<std::string>& args = kSlowRender) {
         const fs::path err = dir_.parent_path() / (dir_.filename().string() + ".err");
-        run_ = start_mpirun(3, kSlowRender, dir_, err);
+        run_ = start_mpirun(3, args, dir_, err);
         ASSERT_GT(run_.pid, 0);
         const auto deadline = Clock::now() + std::chrono::seconds(30);
         while (luz_mpi_processes(dir_).size() < 3) {
@@ -92,6 +94,39 @@ TEST_F(ProcessFailure, SigintToMpirunEndsTheRun) {
     ASSERT_NO_FATAL_FAILURE(start_slow_render());
     ASSERT_EQ(kill(run_.pid, SIGINT), 0);
     expect_whole_run_ends();
+}
+
+// --checkpoint under mpirun (SPEC §3): interrupted under 3 processes, the checkpoint stays and
+// no image; resumed under 2 processes, the image is the uninterrupted one-process render's,
+// bit for bit, and the checkpoint is gone.
+TEST_F(ProcessFailure, CheckpointInterruptedUnderThreeResumesUnderTwo) {
+    const std::vector<std::string> scene = {"render",    "demo:whitted", "--width",   "800",
+                                            "--height",  "600",          "--aa",      "grid",
+                                            "--samples", "36",           "--threads", "1"};
+    auto with = [&](std::vector<std::string> extra) {
+        std::vector<std::string> a = scene;
+        a.insert(a.end(), extra.begin(), extra.end());
+        return a;
+    };
+    start_slow_render(with({"--checkpoint", "c.ckpt", "-o", "out.png"}));
+    ASSERT_EQ(kill(run_.pid, SIGINT), 0);
+    const int status = wait_for_exit(run_.pid, 10);
+    ASSERT_NE(status, -1) << err_text();
+    run_.pid = -1;
+    EXPECT_NE(status, 0) << err_text();
+    EXPECT_EQ(list_dir(dir_), std::set<std::string>{"c.ckpt"}) << err_text();
+
+    const RunResult resumed =
+        run_mpirun(2, with({"--checkpoint", "c.ckpt", "-o", "out.png", "--stats", "s.json"}), dir_);
+    ASSERT_EQ(resumed.status, 0) << resumed.err;
+    ASSERT_EQ(run_luz(with({"-o", "ref.png", "-q"}), dir_).status, 0);
+    EXPECT_EQ(read_file(dir_ / "out.png"), read_file(dir_ / "ref.png"));
+    EXPECT_FALSE(fs::exists(dir_ / "c.ckpt"));
+    const auto stats = nlohmann::json::parse(read_file(dir_ / "s.json"));
+    EXPECT_EQ(stats["processes"], 2);
+    uint64_t sum = 0;  // tiles read back from the checkpoint count for rank 0
+    for (const auto& n : stats["primary_rays_by_process"]) sum += n.get<uint64_t>();
+    EXPECT_EQ(sum, stats["rays"]["primary"].get<uint64_t>());
 }
 
 }  // namespace
