@@ -3,7 +3,8 @@
 # 1 process × 2 threads and by 2 processes × 1 thread (mpirun), side by side, alternating,
 # REPS times each; prints the median wall times, their ratio, the bytes rank 0 received per
 # tile and the messages, and checks the two images are the same bytes. Also 1 process under
-# mpirun (the plumbing alone) and, with --aa adaptive, the corner broadcast.
+# mpirun, unbound (--bind-to none: the plumbing alone), and, with --aa adaptive, the corner
+# broadcast.
 #
 #     bench/mpi_scaling.sh [LUZ] [REPS]      # LUZ defaults to build/release/luz, REPS to 5
 set -euo pipefail
@@ -15,13 +16,14 @@ mpirun=(mpirun --oversubscribe)
 [ "$(id -u)" -eq 0 ] && mpirun+=(--allow-run-as-root)
 scene=(demo:whitted --width 3200 --height 2400 -q)
 
-# run NAME AA COMMAND…: appends the wall seconds of one run to $tmp/NAME.times
+# run NAME AA THREADS COMMAND…: appends the wall seconds of one run to $tmp/NAME.times
 run() {
-  local name="$1" aa="$2"
-  shift 2
+  local name="$1" aa="$2" threads="$3"
+  shift 3
   local t0 t1
   t0=$(date +%s.%N)
-  "$@" render "${scene[@]}" --aa "$aa" -o "$tmp/$name.png" --stats "$tmp/$name.json"
+  "$@" render "${scene[@]}" --aa "$aa" --threads "$threads" -o "$tmp/$name.png" \
+    --stats "$tmp/$name.json"
   t1=$(date +%s.%N)
   echo "$t1 - $t0" | bc >>"$tmp/$name.times"
 }
@@ -29,9 +31,9 @@ median() { sort -g "$1" | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 
 for aa in none adaptive; do
   for ((i = 0; i < reps; i++)); do
-    run "p1t2_$aa" "$aa" "$luz" --threads 2
-    run "p2t1_$aa" "$aa" "${mpirun[@]}" -np 2 "$luz" --threads 1
-    run "mpi1t2_$aa" "$aa" "${mpirun[@]}" -np 1 "$luz" --threads 2
+    run "p1t2_$aa" "$aa" 2 "$luz"
+    run "p2t1_$aa" "$aa" 1 "${mpirun[@]}" -np 2 "$luz"
+    run "mpi1t2_$aa" "$aa" 2 "${mpirun[@]}" --bind-to none -np 1 "$luz"
   done
   cmp "$tmp/p1t2_$aa.png" "$tmp/p2t1_$aa.png" || { echo "images differ ($aa)" >&2; exit 1; }
 done
@@ -45,7 +47,7 @@ for aa in none adaptive; do
 import json, sys
 s = json.load(open(sys.argv[1])); name, aa, m, base = sys.argv[2], sys.argv[3], float(sys.argv[4]), float(sys.argv[5])
 label = {"p1t2": "1 process x 2 threads", "p2t1": "2 processes x 1 thread",
-         "mpi1t2": "mpirun -np 1, 2 threads"}[name]
+         "mpi1t2": "mpirun -np 1 (unbound) x 2"}[name]
 mpi = s.get("mpi", {})
 tiles = mpi.get("tiles_received", 0)
 per = mpi.get("tile_bytes_received", 0) / tiles if tiles else 0

@@ -70,6 +70,16 @@ int run_rank0(int argc, char** argv) {
     const FrameRenderer render_frame = [&](const Scene& scene, const SceneDesc& desc,
                                            const RenderOptions& options) {
         if (!sent) {
+            // mpirun binds each process to cores (Open MPI: one core each when -np ≤ 2):
+            // --threads beyond them share those cores.
+            const int cores = resolve_threads(0);
+            if (options.control.threads > cores) {
+                std::fprintf(stderr,
+                             "luz: warning: --threads %d, but mpirun bound this process to %d "
+                             "core%s (mpirun --bind-to none, or --map-by ...:PE=%d)\n",
+                             options.control.threads, cores, cores == 1 ? "" : "s",
+                             options.control.threads);
+            }
             broadcast_bundle(bundle);  // status -1: render
             sent = true;
         }
@@ -96,7 +106,6 @@ void follow_rank0(const RenderArgs& o) {
     const FrameRange range = o.frames ? parse_frames(*o.frames, animation) : FrameRange{};
     RenderOptions options;
     options.control.threads = o.threads;
-    options.control.cancel = &interrupt_flag();
     options.want_aa_mask = !o.aa_mask_file.empty();
     if (!o.aovs.empty()) options.aovs = parse_aov_list(o.aovs, "--aov " + o.aovs);
     if (o.region) options.region = parse_region(*o.region, first.image);
@@ -109,15 +118,17 @@ void follow_rank0(const RenderArgs& o) {
             scene = build(desc);
             built_from = desc;
         }
-        set_interrupt_exits_now(false);
         render_shared(scene, desc, options, passes);
-        throw_if_interrupted();
     }
 }
 
 int run_other(int argc, char** argv, int rank, int size) {
-    install_interrupt_handlers();
-    set_interrupt_exits_now(true);
+    // Interruption is rank 0's to decide: it keeps its --checkpoint, says "interrupted" and
+    // ends the run (MPI_Abort), and mpirun then kills the others. mpirun signals every
+    // process at once (SIGINT to mpirun, or ending a failed run): here a signal is ignored,
+    // so that no process ends before rank 0 has kept what is done, or prints anything.
+    std::signal(SIGINT, SIG_IGN);
+    std::signal(SIGTERM, SIG_IGN);
     const std::string who = "luz: process " + std::to_string(rank) + " of " + std::to_string(size);
     SceneBundle bundle;
     try {
@@ -136,8 +147,6 @@ int run_other(int argc, char** argv, int rank, int size) {
         app.parse(argc, argv);
         follow_rank0(o);
         return 0;
-    } catch (const Interrupted& e) {
-        return 128 + e.signal;  // rank 0 reports it
     } catch (const std::exception& e) {
         // Rank 0 read the same scene without error: what this process got differs.
         print_error_line(who + ": " + e.what());

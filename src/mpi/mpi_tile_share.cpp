@@ -1,14 +1,16 @@
 // MpiTileShare: tiles handed out on request by rank 0, their bytes gathered there (and, for a
 // pass every process needs, broadcast back). Every MPI call is made by one thread at a time
-// (MPI_THREAD_SERIALIZED): on rank 0 by its server thread during a pass and by the main
-// thread between passes; elsewhere under mutex_. Waits poll, so that a cancelled render (a
-// signal) stops waiting at once.
+// (MPI_THREAD_SERIALIZED): under mutex_ by the render threads (rank 0 serves the others'
+// requests in next(), between two of its tiles, and in end_pass() once its own are done), and
+// by the main thread between passes. Waits poll, so that a cancelled render (a signal) stops
+// waiting at once.
 #include "mpi/mpi_tile_share.h"
 
 #include <algorithm>
 #include <chrono>
 #include <climits>
 #include <exception>
+#include <thread>
 
 #include "mpi/wire.h"
 
@@ -16,21 +18,18 @@ namespace luz::mpi {
 namespace {
 
 constexpr uint64_t kRequest = 1, kFinal = 2;
-constexpr size_t kMaxBatch = 64;    ///< most items in one reply
 constexpr int kTagBase = 16;        ///< below: other messages
 constexpr int kTagPasses = 100000;  ///< pass numbers wrap (tags stay < 2^18)
 
-/// Sleeps a little longer each time nothing happened (20 µs up to 0.2 ms).
+/// Sleeps a little longer each time nothing happened (10 µs up to 0.1 ms).
 struct Backoff {
     int us = 0;
     void idle() {
-        us = std::min(200, us ? us * 2 : 20);
+        us = std::min(100, us ? us * 2 : 10);
         std::this_thread::sleep_for(std::chrono::microseconds(us));
     }
     void busy() { us = 0; }
 };
-
-std::exception_ptr g_server_error;  // set by the server thread, rethrown by end_pass
 
 }  // namespace
 
@@ -38,10 +37,6 @@ MpiTileShare::MpiTileShare(MPI_Comm comm, int pass_base) : comm_(comm), pass_bas
     MPI_Comm_rank(comm_, &rank_);
     MPI_Comm_size(comm_, &size_);
     rays_.assign(static_cast<size_t>(size_), 0);
-}
-
-MpiTileShare::~MpiTileShare() {
-    if (server_.joinable()) server_.join();
 }
 
 size_t MpiTileShare::preassigned(size_t count, int processes) {
@@ -90,15 +85,7 @@ void MpiTileShare::begin_pass(size_t count, bool everyone, const std::vector<cha
             }
         }
         restored_.clear();
-        g_server_error = nullptr;
-        if (size_ > 1)
-            server_ = std::thread([this] {
-                try {
-                    serve();
-                } catch (...) {
-                    g_server_error = std::current_exception();
-                }
-            });
+        finals_ = 0;
     }
 }
 
@@ -127,26 +114,70 @@ void MpiTileShare::send_work(bool final) {
     wait(r);
 }
 
+void MpiTileShare::post_request() {
+    request_.clear();
+    put_u64(request_, kRequest);
+    put_u64(request_, pending_count_);
+    request_ += pending_;
+    pending_.clear();
+    pending_count_ = 0;
+    if (request_.size() > static_cast<size_t>(INT_MAX))
+        throw std::runtime_error("mpirun: a message of more than 2 GiB (fewer AOVs or tiles?)");
+    MPI_Isend(request_.data(), static_cast<int>(request_.size()), MPI_BYTE, 0, work_tag(), comm_,
+              &send_request_);
+    MPI_Irecv(reply_, static_cast<int>(sizeof reply_), MPI_BYTE, 0, reply_tag(), comm_,
+              &reply_request_);
+    request_out_ = true;
+}
+
+bool MpiTileShare::take_reply(bool block) {
+    if (!request_out_) return true;
+    int done = 0;
+    if (block) {
+        if (!wait(reply_request_)) return false;
+        done = 1;
+    } else {
+        MPI_Test(&reply_request_, &done, MPI_STATUS_IGNORE);
+    }
+    if (!done) {
+        MPI_Test(&send_request_, &done, MPI_STATUS_IGNORE);  // moves a large request along
+        return true;
+    }
+    if (!wait(send_request_)) return false;  // answered, so received: completes at once
+    request_out_ = false;
+    const uint64_t n = std::min<uint64_t>(reply_[0], kMaxBatch);
+    for (uint64_t k = 0; k < n; ++k)
+        if (reply_[1 + k] < count_) queue_.push_back(reply_[1 + k]);
+    exhausted_ = n == 0;
+    last_batch_ = n;
+    return true;
+}
+
 size_t MpiTileShare::next() {
     std::lock_guard lock(mutex_);
     if (cancelled()) return kNone;
-    if (queue_.empty() && rank_ == 0) {
-        const size_t k = next_free_.fetch_add(1);
-        if (k >= todo_.size()) return kNone;
-        queue_.push_back(todo_[k]);
+    if (rank_ == 0) {
+        if (size_ > 1) serve();  // the requests that came in meanwhile, between two tiles
+        if (queue_.empty()) {
+            const size_t k = next_free_.fetch_add(1);
+            if (k >= todo_.size()) return kNone;
+            queue_.push_back(todo_[k]);
+        }
+    } else {
+        // Ask for more before running out (half the last batch left), so that the reply's latency
+        // hides behind the work in hand; wait only when nothing is left.
+        for (;;) {
+            if (!take_reply(false)) return kNone;
+            if (!queue_.empty()) {
+                const size_t low = std::max(kLowWater, last_batch_ / 2);
+                if (queue_.size() <= low + 1 && !request_out_ && !exhausted_) post_request();
+                break;
+            }
+            if (exhausted_ && !request_out_) return kNone;
+            if (!request_out_) post_request();
+            if (!take_reply(true)) return kNone;
+        }
     }
-    if (queue_.empty() && !exhausted_) {
-        send_work(false);
-        uint64_t reply[1 + kMaxBatch];
-        MPI_Request r;
-        MPI_Irecv(reply, static_cast<int>(sizeof reply), MPI_BYTE, 0, reply_tag(), comm_, &r);
-        if (!wait(r)) return kNone;
-        const uint64_t n = std::min<uint64_t>(reply[0], kMaxBatch);
-        for (uint64_t k = 0; k < n; ++k)
-            if (reply[1 + k] < count_) queue_.push_back(reply[1 + k]);
-        exhausted_ = n == 0;
-    }
-    if (queue_.empty()) return kNone;
     const size_t i = queue_.front();
     queue_.pop_front();
     mine_[i] = 1;
@@ -190,18 +221,12 @@ void MpiTileShare::take(int from, std::string_view message) {
 }
 
 void MpiTileShare::serve() {
-    int finals = 0;
-    Backoff backoff;
     std::string message;
-    while (finals < size_ - 1 && !cancelled()) {
+    for (;;) {
         int flag = 0;
         MPI_Status status;
         MPI_Iprobe(MPI_ANY_SOURCE, work_tag(), comm_, &flag, &status);
-        if (!flag) {
-            backoff.idle();
-            continue;
-        }
-        backoff.busy();
+        if (!flag) return;
         int n = 0;
         MPI_Get_count(&status, MPI_BYTE, &n);
         message.resize(static_cast<size_t>(n));
@@ -213,7 +238,7 @@ void MpiTileShare::serve() {
         std::memcpy(&kind, message.data(), sizeof kind);
         take(status.MPI_SOURCE, message);
         if (kind == kFinal) {
-            ++finals;
+            ++finals_;
             continue;
         }
         // A request: a batch shrinking as the pass ends (guided), so the last items spread.
@@ -222,8 +247,7 @@ void MpiTileShare::serve() {
         const size_t batch =
             std::clamp<size_t>(left / (2 * static_cast<size_t>(size_)), 1, kMaxBatch);
         const size_t first = next_free_.fetch_add(batch);
-        uint64_t reply[1 + kMaxBatch];
-        reply[0] = 0;
+        uint64_t reply[1 + kMaxBatch] = {0};
         for (size_t k = first; k < first + batch && k < n_todo; ++k)
             reply[1 + reply[0]++] = todo_[k];
         MPI_Send(reply, static_cast<int>((1 + reply[0]) * sizeof(uint64_t)), MPI_BYTE,
@@ -250,8 +274,15 @@ std::vector<std::pair<size_t, std::string>> MpiTileShare::end_pass() {
         return true;
     };
     if (rank_ == 0) {
-        if (server_.joinable()) server_.join();
-        if (g_server_error) std::rethrow_exception(g_server_error);
+        // Rank 0's threads are done: serve the others until each has sent its last tiles.
+        Backoff backoff;
+        std::lock_guard lock(mutex_);
+        while (size_ > 1 && finals_ < size_ - 1 && !cancelled()) {
+            const int before = finals_;
+            const uint64_t messages = wire_.messages;
+            serve();
+            if (wire_.messages == messages && finals_ == before) backoff.idle();
+        }
         if (cancelled()) return elsewhere;
         if (everyone_ && size_ > 1) {
             std::string all;

@@ -1,6 +1,7 @@
 // TileShare over MPI (SPEC §3.1), like OSPRay's MPI offload mode: each process starts with a
-// few items of the pass given out in advance, then asks rank 0 for more; rank 0 renders too,
-// answers the requests from a thread of its own and gathers every item's bytes.
+// few items of the pass given out in advance, then asks rank 0 for more before it runs out;
+// rank 0 renders too, answers the requests between two of its tiles (no thread of its own to
+// wake) and gathers every item's bytes.
 #pragma once
 
 #include <mpi.h>
@@ -12,7 +13,6 @@
 #include <mutex>
 #include <string>
 #include <string_view>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -33,7 +33,6 @@ class MpiTileShare final : public TileShare {
     /// One per frame render on every process of `comm`. `pass_base` numbers this render's
     /// passes (their message tags) apart from the previous render's.
     MpiTileShare(MPI_Comm comm, int pass_base);
-    ~MpiTileShare() override;
 
     void begin_pass(size_t count, bool everyone, const std::vector<char>& restored,
                     std::function<void(size_t, std::string_view)> arrived,
@@ -51,15 +50,21 @@ class MpiTileShare final : public TileShare {
 
     /// Items each process is given before it asks (the same on every process).
     static size_t preassigned(size_t count, int processes);
+    /// Most items in one reply (tiles may take only tens of µs: a reply must bring many).
+    static constexpr size_t kMaxBatch = 256;
+    /// A worker asks for more when half its last batch, and at least this many, are left.
+    static constexpr size_t kLowWater = 8;
 
   private:
     bool cancelled() const { return cancel_ && cancel_->load(std::memory_order_relaxed); }
     int work_tag() const;
     int reply_tag() const;
-    void serve();  // rank 0's thread
+    void serve();  // rank 0: answers and takes in what has arrived, without waiting
     void take(int from, std::string_view message);
     bool wait(MPI_Request& r);  // false when cancelled first
     void send_work(bool final);
+    void post_request();          // workers: a request (with the pending tiles), not waited for
+    bool take_reply(bool block);  // workers: the reply to it, if here (or waited for)
 
     MPI_Comm comm_;
     int rank_ = 0, size_ = 1;
@@ -77,13 +82,18 @@ class MpiTileShare final : public TileShare {
     std::vector<char> mine_;    ///< items rendered here
     std::string pending_;       ///< finished items not yet sent (workers)
     uint64_t pending_count_ = 0;
+    bool request_out_ = false;  ///< a request is out, its reply not taken
+    size_t last_batch_ = 0;     ///< items in the last reply
+    std::string request_;       ///< its bytes (until sent)
+    MPI_Request send_request_ = MPI_REQUEST_NULL, reply_request_ = MPI_REQUEST_NULL;
+    uint64_t reply_[1 + kMaxBatch] = {};
 
     // rank 0
     std::atomic<size_t> next_free_{0};  ///< first position of todo_ not given out
     std::vector<std::string> bytes_;    ///< per item, when this process keeps it
     std::vector<char> have_;
     std::vector<uint64_t> rays_;
-    std::thread server_;
+    int finals_ = 0;  ///< workers whose last tiles have come in, this pass
     WireCounts wire_;
 };
 

@@ -2,6 +2,7 @@
 // thread count; results never depend on how the items were scheduled.
 #pragma once
 
+#include <sched.h>
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -12,9 +13,12 @@
 
 namespace luz {
 
-/// The number of threads to use for `requested` (0: all cores).
+/// The number of threads to use for `requested` (0: all the cores this process may run on —
+/// its CPU affinity, which taskset, a container's cpuset or mpirun's binding may narrow).
 inline int resolve_threads(int requested) {
     if (requested > 0) return requested;
+    cpu_set_t set;
+    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return CPU_COUNT(&set);
     const unsigned n = std::thread::hardware_concurrency();
     return n ? static_cast<int>(n) : 1;
 }

@@ -5,6 +5,7 @@
 // on where or in which order it was rendered, so the image is the same bits either way.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <string>
 #include <string_view>
@@ -26,6 +27,11 @@ struct TileCode {
     Write write;
     Read read;
 };
+
+template <class Code, class Elsewhere, class Rays>
+void run_shared(const RenderControl& control, Checkpoint* checkpoint,
+                const std::vector<size_t>& list, size_t base, bool everyone, Code& code,
+                Elsewhere&& elsewhere, Rays&& rays);
 
 /// Runs `code` over the tiles `list`. `base` + t is tile t's item number in the checkpoint;
 /// `everyone`: every process needs every tile (see TileShare::begin_pass). `elsewhere(t)` is
@@ -60,8 +66,27 @@ void run_pass(const RenderControl& control, Checkpoint* checkpoint, const std::v
         });
         return;
     }
-    // Shared: the gathering process reads back what the checkpoint holds, and no process
-    // renders it; the tiles that arrive from the others are kept in the checkpoint as they come.
+    // Shared: tiles are handed out in image order (not `list`'s scattered one), so that each
+    // process writes a few bands of its image, not every page of it. The gathering process reads
+    // back what the checkpoint holds, and no process renders it; the tiles that arrive from the
+    // others are kept in the checkpoint as they come.
+    std::vector<size_t> sorted = list;
+    std::sort(sorted.begin(), sorted.end());
+    run_shared(control, checkpoint, sorted, base, everyone, code, elsewhere, rays);
+}
+
+/// run_pass() with control.share set: `list` in the order tiles are handed out.
+template <class Code, class Elsewhere, class Rays>
+void run_shared(const RenderControl& control, Checkpoint* checkpoint,
+                const std::vector<size_t>& list, size_t base, bool everyone, Code& code,
+                Elsewhere&& elsewhere, Rays&& rays) {
+    const auto cancelled = [&] {
+        return control.cancel && control.cancel->load(std::memory_order_relaxed);
+    };
+    const auto read_all = [&](size_t t, std::string_view in, const char* damaged) {
+        code.read(t, in);
+        if (!in.empty()) throw InputError(damaged);
+    };
     TileShare& share = *control.share;
     std::vector<char> held(list.size(), 0);
     if (checkpoint) {

@@ -100,8 +100,8 @@ TEST_F(ProcessFailure, SigintToMpirunEndsTheRun) {
 // no image; resumed under 2 processes, the image is the uninterrupted one-process render's,
 // bit for bit, and the checkpoint is gone.
 TEST_F(ProcessFailure, CheckpointInterruptedUnderThreeResumesUnderTwo) {
-    const std::vector<std::string> scene = {"render",    "demo:whitted", "--width",   "800",
-                                            "--height",  "600",          "--aa",      "grid",
+    const std::vector<std::string> scene = {"render",    "demo:whitted", "--width",   "1200",
+                                            "--height",  "900",          "--aa",      "grid",
                                             "--samples", "36",           "--threads", "1"};
     auto with = [&](std::vector<std::string> extra) {
         std::vector<std::string> a = scene;
