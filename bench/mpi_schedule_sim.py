@@ -28,98 +28,123 @@ TILES = os.path.join(HERE, "mpi_tiles.json")
 
 # --- measured on this machine (docs/SCALING.md, bench/mpi_scaling.sh, bench/mpi_pingpong) ---
 M = {
-    "render_1t_s": 4.0,        # demo:whitted 3200x2400, --threads 1: render seconds (stats)
-    "serial_s": 0.9,           # one process: wall − render (start, build, PNG encode, write)
-    "launch_s": 0.35,          # mpirun start-up over plain luz (−np 2)
-    "launch_per_rank_s": 0.02,  # more per process
+    "render_1t_s": 1.52,       # demo:whitted 3200x2400, --threads 1: render seconds (stats)
+    "serial_s": 0.07,          # one process: wall − render (start, PNG encode, write)
+    "launch_s": 0.43,          # mpirun -np 2 start-up and MPI_Init over plain luz
+    "launch_per_rank_s": 0.01,  # more per process
     "build_s": 0.0,            # scene build per process (whitted: no mesh, ~0)
-    "tile_bytes": 3092,        # bytes per tile received by rank 0 (stats mpi)
-    "latency_s": 60e-6,        # one way, request or reply: the polls' back-off dominates
-    "per_message_s": 5e-6,     # rank 0's server per message
-    "bandwidth_Bps": 6.0e9,    # rank 0's receive bandwidth (shared memory)
+    "tile_bytes": 3160,        # bytes per tile received by rank 0 (stats "mpi")
+    "latency_s": 0.2e-6,       # one way (bench/mpi_pingpong: 0.33 µs round trip)
+    "per_message_s": 2e-6,     # rank 0 per message (probe, receive, reply)
+    "bandwidth_Bps": 12e9,     # rank 0's receive bandwidth (bench/mpi_pingpong)
     "cores": 2,
 }
 
 
+MAX_BATCH, LOW_WATER = 256, 8  # src/mpi/mpi_tile_share.h
+
+
 def guided(left, n):
-    return max(1, min(64, left // (2 * n)))
+    return max(1, min(MAX_BATCH, left // (2 * n)))
 
 
 def preassigned(count, n):
     return max(1, min(8, count // (4 * n)))
 
 
-def simulate_pass(costs, n, threads, latency, per_message, bandwidth, speed, tile_bytes):
-    """Seconds of one pass over `costs` (seconds per tile at full speed) on n processes of
-    `threads` threads each running at `speed` (1: a core each)."""
+def simulate_pass(costs, n, threads, latency, per_message, bandwidth, speed, tile_bytes,
+                  poll=50e-6):
+    """Seconds of one pass over `costs` (seconds per tile at full speed, in image order) on n
+    processes of `threads` threads each running at `speed` (1: a core each). Rank 0 answers
+    requests between two of its tiles, and every `poll` seconds once its own are done."""
     count = len(costs)
     p = preassigned(count, n)
-    queues = [list(range(r * p, min(count, (r + 1) * p))) for r in range(n)]
-    for q in queues:
-        q.reverse()
+    queue = [list(range(r * p, min(count, (r + 1) * p))) for r in range(n)]
     next_free = min(count, n * p)
-    pending = [0] * n          # finished tiles not yet sent, per rank
-    requesting = [False] * n   # a request is out
-    waiting = [[] for _ in range(n)]
+    pending = [0] * n        # finished tiles not yet sent
+    out = [False] * n        # a request is out
+    last_batch = [0] * n
     exhausted = [False] * n
-    server_free = 0.0
-    events = []  # (time, kind, rank, thread)
-    for r in range(n):
-        for t in range(threads):
-            heapq.heappush(events, (0.0, 0, r, t))  # 0: thread free
+    idle = [[] for _ in range(n)]  # threads waiting for a reply
+    inbox = []               # (arrival, rank, bytes, final)
+    busy0 = [0.0] * threads  # when each of rank 0's threads is free
+    events = [(0.0, 0, r, t) for r in range(n) for t in range(threads)]  # (time, kind, r, t)
+    heapq.heapify(events)    # kind 0: a thread is free; 1: a reply reaches rank r
+    replies = {}
+    finals_at = 0.0
     end = 0.0
-    finals = 0
 
-    def serve(arrival, nbytes):
-        nonlocal server_free
-        start = max(arrival, server_free)
-        server_free = start + per_message + nbytes / bandwidth
-        return server_free
-
-    while events:
-        time, kind, r, t = heapq.heappop(events)
-        if kind == 1:  # a reply reached rank r
+    def answer(now):
+        """Rank 0 takes in what has arrived by `now`; returns the time it spent."""
+        nonlocal next_free, finals_at
+        spent = 0.0
+        inbox.sort()
+        while inbox and inbox[0][0] <= now:
+            arrival, r, nbytes, final = inbox.pop(0)
+            spent += per_message + nbytes / bandwidth
+            if final:
+                finals_at = max(finals_at, now + spent)
+                continue
             left = count - next_free
             b = guided(left, n) if left > 0 else 0
-            items = list(range(next_free, min(count, next_free + b)))
-            next_free += len(items)
-            requesting[r] = False
-            if not items:
-                exhausted[r] = True
-                # final: what is pending goes to rank 0 when the rank's threads are done
-            queues[r] = items[::-1] + queues[r]
-            for th in waiting[r]:
-                heapq.heappush(events, (time, 0, r, th))
-            waiting[r] = []
-            continue
-        # a thread of rank r is free at `time`
-        if queues[r]:
-            i = queues[r].pop()
-            heapq.heappush(events, (time + costs[i] / speed, 0, r, t))
-            pending[r] += 1
-            end = max(end, time + costs[i] / speed)
+            replies[r] = list(range(next_free, min(count, next_free + b)))
+            next_free += len(replies[r])
+            heapq.heappush(events, (now + spent + latency, 1, r, -1))
+        return spent
+
+    def request(r, now, final=False):
+        out[r] = not final
+        inbox.append((now + latency + pending[r] * tile_bytes / bandwidth, r,
+                      pending[r] * tile_bytes, final))
+        pending[r] = 0
+
+    while events:
+        now, kind, r, t = heapq.heappop(events)
+        if kind == 1:
+            items = replies.pop(r)
+            out[r] = False
+            last_batch[r] = len(items)
+            exhausted[r] = not items
+            queue[r] += items
+            for th in idle[r]:
+                heapq.heappush(events, (now, 0, r, th))
+            idle[r] = []
+            if exhausted[r] and not queue[r]:
+                request(r, now, final=True)  # its last tiles
             continue
         if r == 0:
-            if next_free < count:
-                i = next_free
+            now += answer(now)
+            if not queue[0] and next_free < count:
+                queue[0].append(next_free)
                 next_free += 1
-                heapq.heappush(events, (time + costs[i] / speed, 0, r, t))
-                end = max(end, time + costs[i] / speed)
+            if queue[0]:
+                i = queue[0].pop(0)
+                done = now + costs[i] / speed
+                end = max(end, done)
+                heapq.heappush(events, (done, 0, 0, t))
+            continue
+        if queue[r]:
+            i = queue[r].pop(0)
+            if len(queue[r]) <= max(LOW_WATER, last_batch[r] // 2) and not out[r] and not exhausted[r]:
+                request(r, now)
+            done = now + costs[i] / speed
+            pending[r] += 1
+            end = max(end, done)
+            heapq.heappush(events, (done, 0, r, t))
             continue
         if exhausted[r]:
             continue
-        waiting[r].append(t)
-        if not requesting[r]:
-            requesting[r] = True
-            nbytes = pending[r] * tile_bytes
-            pending[r] = 0
-            done = serve(time + latency, nbytes)
-            heapq.heappush(events, (done + latency, 1, r, -1))
-    # finals: each rank's last tiles reach rank 0
-    for r in range(1, n):
-        if pending[r]:
-            end = max(end, serve(end + latency, pending[r] * tile_bytes))
-    return max(end, server_free)
+        idle[r].append(t)
+        if not out[r]:
+            request(r, now)
+        # rank 0 answers at its next tile boundary, or after a poll when it has no tiles left
+        if not any(queue[0]) and next_free >= count:
+            heapq.heappush(events, (now + latency + poll, 0, 0, 0))
+    # the last tiles: rank 0 polls until every final has come in
+    while inbox:
+        now = max(end, min(a for a, *_ in inbox)) + poll / 2
+        answer(now)
+    return max(end, finals_at)
 
 
 def load_costs(total_seconds):
@@ -149,23 +174,30 @@ def cluster():
         "10GbE": {"latency_s": 25e-6, "per_message_s": 5e-6, "bandwidth_Bps": 1.1e9},
         "InfiniBand": {"latency_s": 2e-6, "per_message_s": 2e-6, "bandwidth_Bps": 11e9},
     }
-    jobs = {  # name: (scale of compute over whitted 3200x2400 none, tiles scale)
+    jobs = {  # name: (compute over whitted 3200x2400 without antialiasing, tiles over it)
         "whitted 3200x2400": (1.0, 1),
-        "poster 7680x4320, 256 spp": (4.32 * 256 * 1.0, 4.32),
+        "poster 7680x4320, 256 samples per pixel": (4.32 * 256, 4),
     }
     base_costs = load_costs(M["render_1t_s"])
-    for job, (scale, tiles_scale) in jobs.items():
-        reps = int(round(tiles_scale))
+    for job, (scale, reps) in jobs.items():
         costs = [c * scale / reps for c in base_costs for _ in range(reps)]
-        one = wall(costs, 1, 2, networks["InfiniBand"], 1.0, M["serial_s"] * tiles_scale, 0, 0)
-        print(f"\n{job}: one machine (2 threads) {one:.1f} s")
-        print(f"{'ranks':>6s} " + " ".join(f"{k + ' s':>14s} {'speed-up':>8s}" for k in networks))
+        net1 = networks["InfiniBand"]
+        one_pass = simulate_pass(costs, 1, 2, net1["latency_s"], net1["per_message_s"],
+                                 net1["bandwidth_Bps"], 1.0, M["tile_bytes"])
+        serial = M["serial_s"] * reps
+        one = one_pass + serial
+        print(f"\n{job}: {len(costs)} tiles; one machine, 2 threads: {one:.2f} s "
+              f"(tile pass {one_pass:.2f} s)")
+        print(f"{'ranks':>6s} " + " ".join(
+            f"{k + ' wall s':>16s} {'speed-up':>8s} {'pass only':>9s}" for k in networks))
         for n in [8, 16, 64, 256, 1000]:
             row = f"{n:6d} "
             for net in networks.values():
-                launch = M["launch_s"] + 0.002 * n  # launch grows with the ranks (tree spawn)
-                w = wall(costs, n, 2, net, 1.0, M["serial_s"] * tiles_scale, launch, M["build_s"])
-                row += f"{w:14.2f} {one / w:8.1f} "
+                t_pass = simulate_pass(costs, n, 2, net["latency_s"], net["per_message_s"],
+                                       net["bandwidth_Bps"], 1.0, M["tile_bytes"])
+                launch = M["launch_s"] + 0.002 * n  # assumed: launch grows with the ranks
+                w = launch + M["build_s"] + serial + t_pass
+                row += f"{w:16.2f} {one / w:8.1f} {one_pass / t_pass:9.1f} "
             print(row)
 
 
