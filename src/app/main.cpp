@@ -19,7 +19,11 @@ void become_luz_mpi_under_mpirun(int argc, char** argv) {
         return;
     std::error_code ec;
     const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (ec) return;
+    if (ec) {  // never render N copies of the whole image
+        luz::print_error_line("luz: under mpirun, but cannot find luz-mpi: /proc/self/exe: " +
+                              ec.message());
+        std::exit(1);
+    }
     const std::string mpi = (self.parent_path() / "luz-mpi").string();
     if (::access(mpi.c_str(), X_OK) != 0) {
         const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");

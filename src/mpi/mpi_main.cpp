@@ -1,9 +1,9 @@
 // luz-mpi: `luz render` across the processes of `mpirun -np N` (SPEC §3.1). `luz` runs it
 // when started by mpirun (app/main.cpp). Rank 0 runs the ordinary command line, reading the
-// scene and its files while recording them; before its first frame it sends them to every
-// other process (scene_bundle.h); each frame's tiles are then shared (mpi_tile_share.h) and
-// gathered on rank 0, which alone writes files and draws the progress bar. The others load
-// the same scene from what rank 0 sent and follow it frame by frame, silently.
+// scene and its files as ever while keeping a copy (a file observer); before its first frame it
+// sends them to every other process (scene_bundle.h); each frame's tiles are then shared
+// (mpi_tile_share.h) and gathered on rank 0, which alone writes files and draws the progress bar.
+// The others load the same scene from what rank 0 sent and follow it frame by frame, silently.
 #include <mpi.h>
 
 #include <CLI/CLI.hpp>
@@ -64,7 +64,7 @@ Frame render_shared(const Scene& scene, const SceneDesc& desc, RenderOptions opt
 
 int run_rank0(int argc, char** argv) {
     SceneBundle bundle;
-    set_file_source(recording_source(bundle));
+    set_file_observer(recorder(bundle));
     bool sent = false;
     int passes = 0;
     const FrameRenderer render_frame = [&](const Scene& scene, const SceneDesc& desc,

@@ -37,13 +37,19 @@ MpiTileShare::MpiTileShare(MPI_Comm comm, int pass_base) : comm_(comm), pass_bas
     MPI_Comm_rank(comm_, &rank_);
     MPI_Comm_size(comm_, &size_);
     rays_.assign(static_cast<size_t>(size_), 0);
+    // Pass numbers wrap below the library's largest tag (MPI promises at least 32767).
+    int* ub = nullptr;
+    int flag = 0;
+    MPI_Comm_get_attr(comm_, MPI_TAG_UB, &ub, &flag);
+    const int largest = flag && ub ? *ub : 32767;
+    tag_passes_ = std::max(2, std::min(kTagPasses, (largest - kTagBase - 1) / 2));
 }
 
 size_t MpiTileShare::preassigned(size_t count, int processes) {
     return std::clamp<size_t>(count / (4 * static_cast<size_t>(processes)), 1, 8);
 }
 
-int MpiTileShare::work_tag() const { return kTagBase + 2 * ((pass_base_ + pass_) % kTagPasses); }
+int MpiTileShare::work_tag() const { return kTagBase + 2 * ((pass_base_ + pass_) % tag_passes_); }
 int MpiTileShare::reply_tag() const { return work_tag() + 1; }
 
 void MpiTileShare::restored(size_t i, std::string bytes, uint64_t primary_rays) {
@@ -55,6 +61,7 @@ void MpiTileShare::begin_pass(size_t count, bool everyone, const std::vector<cha
                               std::function<void(size_t, std::string_view)> arrived,
                               const std::atomic<bool>* cancel) {
     ++pass_;
+    stopped_ = stopped_ || (cancel && cancel->load(std::memory_order_relaxed));
     count_ = count;
     everyone_ = everyone;
     arrived_ = std::move(arrived);
@@ -67,7 +74,16 @@ void MpiTileShare::begin_pass(size_t count, bool everyone, const std::vector<cha
     // What rank 0 holds already (from its checkpoint) is rendered by no one.
     std::vector<char> held = rank_ == 0 ? restored : std::vector<char>(count, 0);
     held.resize(count, 0);
-    if (size_ > 1) MPI_Bcast(held.data(), static_cast<int>(count), MPI_CHAR, 0, comm_);
+    if (size_ > 1 && !stopped_) {
+        MPI_Request r;
+        MPI_Ibcast(held.data(), static_cast<int>(count), MPI_CHAR, 0, comm_, &r);
+        if (!wait(r)) stopped_ = true;
+    }
+    if (stopped_) {  // cancelled: this render is over, every pass from now on is empty
+        todo_.clear();
+        exhausted_ = true;
+        return;
+    }
     todo_.clear();
     for (size_t i = 0; i < count; ++i)
         if (!held[i]) todo_.push_back(i);
@@ -95,7 +111,10 @@ bool MpiTileShare::wait(MPI_Request& r) {
         int done = 0;
         MPI_Test(&r, &done, MPI_STATUS_IGNORE);
         if (done) return true;
-        if (cancelled()) return false;
+        if (cancelled()) {
+            stopped_ = true;
+            return false;
+        }
         backoff.idle();
     }
 }
@@ -155,7 +174,7 @@ bool MpiTileShare::take_reply(bool block) {
 
 size_t MpiTileShare::next() {
     std::lock_guard lock(mutex_);
-    if (cancelled()) return kNone;
+    if (stopped_ || cancelled()) return kNone;
     if (rank_ == 0) {
         if (size_ > 1) serve();  // the requests that came in meanwhile, between two tiles
         if (queue_.empty()) {
@@ -225,15 +244,20 @@ void MpiTileShare::serve() {
     for (;;) {
         int flag = 0;
         MPI_Status status;
-        MPI_Iprobe(MPI_ANY_SOURCE, work_tag(), comm_, &flag, &status);
+        MPI_Message handle;
+        MPI_Improbe(MPI_ANY_SOURCE, work_tag(), comm_, &flag, &handle, &status);
         if (!flag) return;
         int n = 0;
         MPI_Get_count(&status, MPI_BYTE, &n);
         message.resize(static_cast<size_t>(n));
-        MPI_Recv(message.data(), n, MPI_BYTE, status.MPI_SOURCE, work_tag(), comm_,
-                 MPI_STATUS_IGNORE);
+        // A large message needs its sender's help to arrive: wait without blocking on it.
+        MPI_Request r;
+        MPI_Imrecv(message.data(), n, MPI_BYTE, &handle, &r);
+        if (!wait(r)) return;
         ++wire_.messages;
-        if (message.size() < 8) throw WireError("a message is truncated");
+        if (message.size() < 8)
+            throw WireError("a message from process " + std::to_string(status.MPI_SOURCE) +
+                            " is truncated");
         uint64_t kind;
         std::memcpy(&kind, message.data(), sizeof kind);
         take(status.MPI_SOURCE, message);
@@ -258,6 +282,10 @@ void MpiTileShare::serve() {
 
 std::vector<std::pair<size_t, std::string>> MpiTileShare::end_pass() {
     std::vector<std::pair<size_t, std::string>> elsewhere;
+    if (stopped_ || cancelled()) {
+        stopped_ = true;
+        return elsewhere;  // the render is cancelled: what is missing stays missing
+    }
     // Every process needs every item: rank 0 broadcasts them all, in chunks below 2 GiB.
     const auto broadcast = [&](std::string& all) -> bool {
         uint64_t size = all.size();

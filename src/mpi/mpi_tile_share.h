@@ -93,7 +93,10 @@ class MpiTileShare final : public TileShare {
     std::vector<std::string> bytes_;    ///< per item, when this process keeps it
     std::vector<char> have_;
     std::vector<uint64_t> rays_;
-    int finals_ = 0;  ///< workers whose last tiles have come in, this pass
+    int finals_ = 0;
+    int tag_passes_ = 2;    ///< pass numbers wrap at this (MPI_TAG_UB)
+    bool stopped_ = false;  ///< cancelled: every later pass of this render is empty  ///< workers
+                            ///< whose last tiles have come in, this pass
     WireCounts wire_;
 };
 

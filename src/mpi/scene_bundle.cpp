@@ -35,12 +35,8 @@ SceneBundle decode_bundle(std::string_view bytes) {
     return b;
 }
 
-TextReader recording_source(SceneBundle& into) {
-    return [&into](const std::string& path, std::string& reason) {
-        std::optional<std::string> text = read_text_file_from_disk(path, reason);
-        if (text) into.files[path] = *text;
-        return text;
-    };
+FileObserver recorder(SceneBundle& into) {
+    return [&into](const std::string& path, const std::string& text) { into.files[path] = text; };
 }
 
 TextReader bundle_source(const SceneBundle& b) {

@@ -21,8 +21,8 @@ std::string encode(const SceneBundle& b);
 /// Throws WireError when `bytes` is not a whole bundle.
 SceneBundle decode_bundle(std::string_view bytes);
 
-/// A file source (set_file_source()) that reads from disk and keeps what it read in `into`.
-TextReader recording_source(SceneBundle& into);
+/// A file observer (set_file_observer()) that keeps every file the loader read in `into`.
+FileObserver recorder(SceneBundle& into);
 
 /// A file source that reads the files of `b` (and refuses the others: rank 0 did not read them).
 TextReader bundle_source(const SceneBundle& b);

@@ -43,7 +43,7 @@ void run_pass(const RenderControl& control, Checkpoint* checkpoint, const std::v
     const auto cancelled = [&] {
         return control.cancel && control.cancel->load(std::memory_order_relaxed);
     };
-    const auto read_all = [&](size_t t, std::string_view in, const char* damaged) {
+    const auto read_all = [&](size_t t, std::string_view in, const std::string& damaged) {
         code.read(t, in);
         if (!in.empty()) throw InputError(damaged);
     };
@@ -52,8 +52,9 @@ void run_pass(const RenderControl& control, Checkpoint* checkpoint, const std::v
             if (cancelled()) return;
             const size_t t = list[item];
             if (checkpoint && checkpoint->done(base + t)) {
-                read_all(t, checkpoint->data(base + t),
-                         "--checkpoint: damaged checkpoint (a tile is long)");
+                read_all(
+                    t, checkpoint->data(base + t),
+                    checkpoint->path() + ": --checkpoint: damaged checkpoint (a tile is long)");
                 elsewhere(t);
                 return;
             }
@@ -83,7 +84,7 @@ void run_shared(const RenderControl& control, Checkpoint* checkpoint,
     const auto cancelled = [&] {
         return control.cancel && control.cancel->load(std::memory_order_relaxed);
     };
-    const auto read_all = [&](size_t t, std::string_view in, const char* damaged) {
+    const auto read_all = [&](size_t t, std::string_view in, const std::string& damaged) {
         code.read(t, in);
         if (!in.empty()) throw InputError(damaged);
     };
@@ -94,7 +95,7 @@ void run_shared(const RenderControl& control, Checkpoint* checkpoint,
             const size_t t = list[item];
             if (!checkpoint->done(base + t)) continue;
             read_all(t, checkpoint->data(base + t),
-                     "--checkpoint: damaged checkpoint (a tile is long)");
+                     checkpoint->path() + ": --checkpoint: damaged checkpoint (a tile is long)");
             elsewhere(t);
             held[item] = 1;
             share.restored(item, std::string(checkpoint->data(base + t)), rays(t));

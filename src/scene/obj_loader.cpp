@@ -436,9 +436,21 @@ TextReader& source_slot() {
 void set_file_source(TextReader source) { source_slot() = std::move(source); }
 const TextReader& file_source() { return source_slot(); }
 
+namespace {
+FileObserver& observer_slot() {
+    static FileObserver observer;
+    return observer;
+}
+}  // namespace
+
+void set_file_observer(FileObserver observer) { observer_slot() = std::move(observer); }
+const FileObserver& file_observer() { return observer_slot(); }
+
 std::optional<std::string> read_text_file(const std::string& path, std::string& reason) {
     if (const TextReader& source = file_source()) return source(path, reason);
-    return read_text_file_from_disk(path, reason);
+    std::optional<std::string> text = read_text_file_from_disk(path, reason);
+    if (text && file_observer()) file_observer()(path, *text);
+    return text;
 }
 
 std::optional<std::string> read_text_file_from_disk(const std::string& path, std::string& reason) {

@@ -28,11 +28,17 @@ std::optional<std::string> read_text_file(const std::string& path, std::string& 
 std::optional<std::string> read_text_file_from_disk(const std::string& path, std::string& reason);
 
 /// Where the loader reads every file it reads — the scene file, OBJ and MTL files: from disk
-/// (an empty source, the default) or from `source`. Under mpirun, rank 0 records what it reads
-/// and the other processes read the same bytes from what it sent (src/mpi/). Process-wide:
+/// (an empty source, the default) or from `source`: under mpirun, the other processes read
+/// the bytes rank 0 sent (src/mpi/). Process-wide:
 /// set it before loading, from one thread.
 void set_file_source(TextReader source);
 const TextReader& file_source();
+
+/// Called with every file the loader has read from disk (the scene file, OBJ and MTL files),
+/// as it was read: rank 0 under mpirun keeps them to send (src/mpi/). Empty: none.
+using FileObserver = std::function<void(const std::string& path, const std::string& text)>;
+void set_file_observer(FileObserver observer);
+const FileObserver& file_observer();
 
 /// The largest OBJ or MTL file read_text_file() reads (default: no limit); `luz render` sets a
 /// share of --max-memory, so that a mesh too large is refused rather than half-loaded.

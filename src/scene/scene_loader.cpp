@@ -198,6 +198,7 @@ SceneText read_scene_text(const std::string& source) {
     const int err = errno;
     std::fclose(f);
     if (failed) throw InputError(source + ": cannot read: " + std::strerror(err));
+    if (file_observer()) file_observer()(source, text);
 
     return {std::move(text), source, std::filesystem::path(source).parent_path().string()};
 }
