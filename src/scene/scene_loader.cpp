@@ -80,7 +80,8 @@ void blaming(const std::string& file, const std::vector<Override>& overrides,
 
 /// The document with the user's overrides applied, and its animation.
 struct Document {
-    Json doc;
+    Json text;  ///< the file as parsed
+    Json doc;   ///< with the user's overrides applied
     std::vector<Override> overrides;
     std::vector<std::string> roots;  ///< per override: what it created or replaced
     AnimationDesc animation;
@@ -88,7 +89,8 @@ struct Document {
 
 Document read_document(std::string_view json_text, const std::string& file,
                        const std::vector<Override>& overrides) {
-    Document d{parse_text(json_text, file), overrides, {}, {}};
+    Document d{parse_text(json_text, file), {}, overrides, {}, {}};
+    d.doc = d.text;
     d.roots.reserve(overrides.size());
     for (const Override& o : overrides) d.roots.push_back(apply_override(d.doc, o));
     blaming(file, d.overrides, d.roots, [&] {
@@ -99,8 +101,8 @@ Document read_document(std::string_view json_text, const std::string& file,
     return d;
 }
 
-/// Frame `frame` of the document: its keyframed values applied after the user's overrides,
-/// then the scene read with the camera's orbit.
+/// Frame `frame` of the document: its keyframed values, then the user's overrides, then the
+/// scene read with the camera's orbit.
 SceneDesc read_frame(const Document& d, const std::string& file, const std::string& base_dir,
                      int frame, MeshCache* meshes) {
     SceneDesc scene;
@@ -117,12 +119,14 @@ SceneDesc read_frame(const Document& d, const std::string& file, const std::stri
     Json doc_copy;
     const Json* doc = &d.doc;
     if (!d.animation.keys.empty()) {
-        doc_copy = d.doc;
+        // The file, then the frame's keyed values, then the user's overrides: the command line
+        // overrides the scene, its animation included (a --set on an animated path holds it).
+        doc_copy = d.text;
         doc = &doc_copy;
-        for (Override& o : frame_overrides(d.animation, frame, file)) {
-            roots.push_back(apply_override(doc_copy, o));
-            overrides.push_back(std::move(o));
-        }
+        overrides = frame_overrides(d.animation, frame, file);
+        overrides.insert(overrides.end(), d.overrides.begin(), d.overrides.end());
+        roots.clear();
+        for (const Override& o : overrides) roots.push_back(apply_override(doc_copy, o));
     }
     blaming(file, overrides, roots,
             [&] { read_scene(*doc, base_dir, meshes, d.animation, frame, scene); });

@@ -136,8 +136,8 @@ TEST_F(AnimationCli, FrameIsTheRenderWithItsKeyedValuesSet) {
     EXPECT_NE(read_file(dir_ / "x.0003.pfm"), read_file(dir_ / "zero.pfm"));
 }
 
-TEST_F(AnimationCli, SetBeforeTheKeysAndTheKeysWin) {
-    // --set on an animated path is replaced by the keyframes; other --set values stay.
+TEST_F(AnimationCli, SetWinsOverTheKeys) {
+    // --set on an animated path holds it at every frame; the other keys still animate.
     write_file(dir_ / "anim.json", animated_scene());
     write_file(dir_ / "still.json", still_scene());
     ASSERT_EQ(run_luz({"render", "anim.json", "--frames", "3:4", "-o", "x.pfm", "--set",
@@ -145,7 +145,7 @@ TEST_F(AnimationCli, SetBeforeTheKeysAndTheKeysWin) {
                       dir_)
                   .status,
               0);
-    ASSERT_EQ(run_luz({"render", "still.json", "--set", "materials.red.n=26", "--set",
+    ASSERT_EQ(run_luz({"render", "still.json", "--set", "materials.red.n=900", "--set",
                        "lights.0.position=[2,5,2]", "--set", "materials.red.ks=0.8", "-o",
                        "ref.pfm", "-q"},
                       dir_)

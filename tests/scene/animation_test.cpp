@@ -289,20 +289,21 @@ TEST(Animation, ThingsPlacedByTheCameraFollowTheOrbit) {
 
 // --- keys and --set ----------------------------------------------------------------------------
 
-TEST(Animation, KeysAreSetAfterTheOverrides) {
+TEST(Animation, OverridesWinOverTheKeys) {
     const std::string json = scene_with(R"({"frames": 5, "keys": {
         "materials.red.n": [[0, 10], [4, 50]],
         "lights.1.position": [[0, [0, 9, 0]], [4, [4, 9, 0]]]}})");
-    // --set on an animated path: the keyframes replace it at every frame. On other paths it
-    // stays. An override may create what a key animates (lights.1) and change the animation.
+    // The command line overrides the scene, its animation included: --set on an animated path
+    // holds it at every frame; the other keys still animate. An override may add to what a key
+    // animates (lights.1) and change the animation.
     const std::vector<Override> o = sets({"materials.red.n=500", "materials.red.ks=0.25",
-                                          "lights.1={\"intensity\": 3}", "animation.frames=6"});
+                                          "lights.1.intensity=3", "animation.frames=6"});
     const SceneDesc first = parse(json, o);
     EXPECT_EQ(first.animation.frames, 6);
     for (int f = 0; f < 6; ++f) {
         SCOPED_TRACE("frame " + std::to_string(f));
         const SceneDesc s = frame_of(json, f, o);
-        EXPECT_FLOAT_EQ(material(s, "red").n, 10 + 10 * std::min(f, 4));
+        EXPECT_FLOAT_EQ(material(s, "red").n, 500);
         expect_vec(material(s, "red").ks, Vec3(0.25f));
         ASSERT_EQ(s.lights.size(), 2u);
         expect_vec(s.lights[1].position, {float(std::min(f, 4)), 9, 0});
@@ -315,14 +316,14 @@ TEST(Animation, KeysAreSetAfterTheOverrides) {
     EXPECT_FLOAT_EQ(material(s, "red").n, 10);
 }
 
-TEST(Animation, OptionOverridesAreReplacedByKeysToo) {
-    // --width is an override named after its option; a key on image.width wins over it.
+TEST(Animation, OptionOverridesWinOverTheKeysToo) {
+    // --width is an override named after its option: a quick preview of an animation that
+    // keys image.width is at that width.
     const std::string json =
         scene_with(R"({"frames": 3, "keys": {"image.width": [[0, 32], [2, 64]]}})");
     const std::vector<Override> o = {Override{"image.width", "100", "--width"}};
-    EXPECT_EQ(frame_of(json, 0, o).image.width, 32);
-    EXPECT_EQ(frame_of(json, 1, o).image.width, 48);
-    EXPECT_EQ(frame_of(json, 2, o).image.width, 64);
+    for (int f = 0; f < 3; ++f) EXPECT_EQ(frame_of(json, f, o).image.width, 100);
+    EXPECT_EQ(frame_of(json, 1, {}).image.width, 48);
 }
 
 // --- meshes ------------------------------------------------------------------------------------
