@@ -46,6 +46,13 @@ void expect_shared_stats(const json& one, const json& many, int np) {
     for (const char* key : {"rays", "intersection_tests", "pixels_refined", "triangles", "width",
                             "height", "pipeline"})
         EXPECT_EQ(one[key], many[key]) << key;
+    // The others rendered tiles (every process starts with at least one 16×16 tile of the ray
+    // pipelines; the zbuffer's 64×64 raster tiles may be fewer than the processes).
+    if (np > 1 && many["pipeline"] != "zbuffer") {
+        EXPECT_GT(many["mpi"]["tiles_received"].get<uint64_t>(), 0u);
+        for (size_t r = 1; r < static_cast<size_t>(np); ++r)
+            EXPECT_GT(many["primary_rays_by_process"][r].get<uint64_t>(), 0u) << "process " << r;
+    }
 }
 
 struct MpiRun {
@@ -84,6 +91,8 @@ std::vector<Combo> combos() {
     v.push_back(Combo{"demo:whitted", "raytrace", "adaptive", 97, 71, {{4, 1}, {2, 2}}});
     v.push_back(Combo{"demo:primitives", "zbuffer", "grid", 80, 61, {{3, 2}, {4, 1}}});
     v.push_back(Combo{"demo:materials", "raytrace", "grid", 64, 48, {{2, 1}, {3, 2}}});
+    // 1 200 tiles: replies of many tiles, requests before a process runs out.
+    v.push_back(Combo{"demo:whitted", "raytrace", "none", 640, 480, {{3, 1}, {2, 2}}});
     return v;
 }
 
