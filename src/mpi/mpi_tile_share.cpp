@@ -80,15 +80,16 @@ void MpiTileShare::begin_pass(size_t count, bool everyone, const std::vector<cha
         if (!wait(r)) stopped_ = true;
     }
     if (stopped_) {  // cancelled: this render is over, every pass from now on is empty
-        todo_.clear();
+        to_render_.clear();
         exhausted_ = true;
         return;
     }
-    todo_.clear();
+    to_render_.clear();
     for (size_t i = 0; i < count; ++i)
-        if (!held[i]) todo_.push_back(i);
-    const size_t n = todo_.size(), p = preassigned(n, size_);
-    for (size_t k = rank_ * p; k < std::min(n, (rank_ + 1) * p); ++k) queue_.push_back(todo_[k]);
+        if (!held[i]) to_render_.push_back(i);
+    const size_t n = to_render_.size(), p = preassigned(n, size_);
+    for (size_t k = rank_ * p; k < std::min(n, (rank_ + 1) * p); ++k)
+        queue_.push_back(to_render_[k]);
     if (rank_ == 0) {
         next_free_ = std::min(n, static_cast<size_t>(size_) * p);
         bytes_.assign(count, {});
@@ -119,29 +120,27 @@ bool MpiTileShare::wait(MPI_Request& r) {
     }
 }
 
-void MpiTileShare::send_work(bool final) {
+std::string MpiTileShare::take_pending(uint64_t kind) {
     std::string message;
-    put_u64(message, final ? kFinal : kRequest);
+    put_u64(message, kind);
     put_u64(message, pending_count_);
     message += pending_;
     pending_.clear();
     pending_count_ = 0;
     if (message.size() > static_cast<size_t>(INT_MAX))
         throw std::runtime_error("mpirun: a message of more than 2 GiB (fewer AOVs or tiles?)");
+    return message;
+}
+
+void MpiTileShare::send_final() {
+    std::string message = take_pending(kFinal);
     MPI_Request r;
     MPI_Isend(message.data(), static_cast<int>(message.size()), MPI_BYTE, 0, work_tag(), comm_, &r);
     wait(r);
 }
 
 void MpiTileShare::post_request() {
-    request_.clear();
-    put_u64(request_, kRequest);
-    put_u64(request_, pending_count_);
-    request_ += pending_;
-    pending_.clear();
-    pending_count_ = 0;
-    if (request_.size() > static_cast<size_t>(INT_MAX))
-        throw std::runtime_error("mpirun: a message of more than 2 GiB (fewer AOVs or tiles?)");
+    request_ = take_pending(kRequest);
     MPI_Isend(request_.data(), static_cast<int>(request_.size()), MPI_BYTE, 0, work_tag(), comm_,
               &send_request_);
     MPI_Irecv(reply_, static_cast<int>(sizeof reply_), MPI_BYTE, 0, reply_tag(), comm_,
@@ -179,8 +178,8 @@ size_t MpiTileShare::next() {
         if (size_ > 1) serve();  // the requests that came in meanwhile, between two tiles
         if (queue_.empty()) {
             const size_t k = next_free_.fetch_add(1);
-            if (k >= todo_.size()) return kNone;
-            queue_.push_back(todo_[k]);
+            if (k >= to_render_.size()) return kNone;
+            queue_.push_back(to_render_[k]);
         }
     } else {
         // Ask for more before running out (half the last batch left), so that the reply's latency
@@ -266,14 +265,14 @@ void MpiTileShare::serve() {
             continue;
         }
         // A request: a batch shrinking as the pass ends (guided), so the last items spread.
-        const size_t n_todo = todo_.size(), free = next_free_.load();
-        const size_t left = free < n_todo ? n_todo - free : 0;
+        const size_t total = to_render_.size(), free = next_free_.load();
+        const size_t left = free < total ? total - free : 0;
         const size_t batch =
             std::clamp<size_t>(left / (2 * static_cast<size_t>(size_)), 1, kMaxBatch);
         const size_t first = next_free_.fetch_add(batch);
         uint64_t reply[1 + kMaxBatch] = {0};
-        for (size_t k = first; k < first + batch && k < n_todo; ++k)
-            reply[1 + reply[0]++] = todo_[k];
+        for (size_t k = first; k < first + batch && k < total; ++k)
+            reply[1 + reply[0]++] = to_render_[k];
         MPI_Send(reply, static_cast<int>((1 + reply[0]) * sizeof(uint64_t)), MPI_BYTE,
                  status.MPI_SOURCE, reply_tag(), comm_);
         ++wire_.messages;
@@ -328,7 +327,7 @@ std::vector<std::pair<size_t, std::string>> MpiTileShare::end_pass() {
         return elsewhere;
     }
     if (cancelled()) return elsewhere;
-    send_work(true);
+    send_final();
     if (everyone_) {
         std::string all;
         if (!broadcast(all)) return elsewhere;

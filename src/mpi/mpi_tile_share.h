@@ -61,8 +61,9 @@ class MpiTileShare final : public TileShare {
     int reply_tag() const;
     void serve();  // rank 0: answers and takes in what has arrived, without waiting
     void take(int from, std::string_view message);
-    bool wait(MPI_Request& r);  // false when cancelled first
-    void send_work(bool final);
+    bool wait(MPI_Request& r);                // false when cancelled first
+    std::string take_pending(uint64_t kind);  // workers: a message with the finished tiles
+    void send_final();                        // workers: the pass's last tiles, waited for
     void post_request();          // workers: a request (with the pending tiles), not waited for
     bool take_reply(bool block);  // workers: the reply to it, if here (or waited for)
 
@@ -75,7 +76,8 @@ class MpiTileShare final : public TileShare {
     const std::atomic<bool>* cancel_ = nullptr;
 
     std::mutex mutex_;
-    std::vector<size_t> todo_;  ///< the pass's items not restored, in order: what is handed out
+    std::vector<size_t>
+        to_render_;  ///< the pass's items not restored, in order: what is handed out
     std::vector<std::pair<size_t, std::string>> restored_;  ///< rank 0, before begin_pass
     std::deque<size_t> queue_;  ///< items given to this process, not yet started
     bool exhausted_ = false;    ///< rank 0 has no more for this process
@@ -89,7 +91,7 @@ class MpiTileShare final : public TileShare {
     uint64_t reply_[1 + kMaxBatch] = {};
 
     // rank 0
-    std::atomic<size_t> next_free_{0};  ///< first position of todo_ not given out
+    std::atomic<size_t> next_free_{0};  ///< first position of to_render_ not given out
     std::vector<std::string> bytes_;    ///< per item, when this process keeps it
     std::vector<char> have_;
     std::vector<uint64_t> rays_;

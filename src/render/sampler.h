@@ -424,6 +424,18 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
     Checkpoint* const checkpoint = control.checkpoint;
     if (checkpoint) checkpoint->start(items);
     const auto elsewhere = [&](size_t t) { progress.add(pixels_of(t)); };
+    // The bytes of a tile of pixels (none, grid): its counters, then its pixels.
+    const auto write_pixels = [&](size_t t, std::string& o) {
+        append_raw(o, counters[t]);
+        append_raw(o, counts[t]);
+        append_rect(o, out, tile_of(t).clipped(window));
+    };
+    const auto read_pixels = [&](size_t t, std::string_view& in) {
+        read_raw(in, counters[t]);
+        read_raw(in, counts[t]);
+        read_rect(in, out, tile_of(t).clipped(window));
+    };
+    const auto rays_of = [&](size_t t) { return primary_rays_of(counters[t]); };
 
     switch (aa.mode) {
         case AaMode::none: {
@@ -443,18 +455,8 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                                      counts[t].samples =
                                          static_cast<uint64_t>(r.width()) * r.height();
                                  },
-                                 [&](size_t t, std::string& o) {
-                                     append_raw(o, counters[t]);
-                                     append_raw(o, counts[t]);
-                                     append_rect(o, out, tile_of(t).clipped(window));
-                                 },
-                                 [&](size_t t, std::string_view& in) {
-                                     read_raw(in, counters[t]);
-                                     read_raw(in, counts[t]);
-                                     read_rect(in, out, tile_of(t).clipped(window));
-                                 }};
-            run_pass(control, checkpoint, tiles, 0, false, code, elsewhere,
-                     [&](size_t t) { return primary_rays_of(counters[t]); });
+                                 write_pixels, read_pixels};
+            run_pass(control, checkpoint, tiles, 0, false, code, elsewhere, rays_of);
             break;
         }
         case AaMode::grid: {
@@ -492,18 +494,8 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                     counters[t] = c;
                     filter_tile(g, tile, region, buf.data(), out);
                 },
-                [&](size_t t, std::string& o) {
-                    append_raw(o, counters[t]);
-                    append_raw(o, counts[t]);
-                    append_rect(o, out, tile_of(t).clipped(window));
-                },
-                [&](size_t t, std::string_view& in) {
-                    read_raw(in, counters[t]);
-                    read_raw(in, counts[t]);
-                    read_rect(in, out, tile_of(t).clipped(window));
-                }};
-            run_pass(control, checkpoint, tiles, 0, false, code, elsewhere,
-                     [&](size_t t) { return primary_rays_of(counters[t]); });
+                write_pixels, read_pixels};
+            run_pass(control, checkpoint, tiles, 0, false, code, elsewhere, rays_of);
             break;
         }
         case AaMode::adaptive: {
@@ -555,8 +547,7 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                                  for (int x = 0; x < r.width(); ++x)
                                      read_raw(in, corner_row(r, y)[x]);
                          }};
-            run_pass(control, checkpoint, corner_tiles, 0, true, pass1, elsewhere,
-                     [&](size_t t) { return primary_rays_of(counters[t]); });
+            run_pass(control, checkpoint, corner_tiles, 0, true, pass1, elsewhere, rays_of);
             // Pass 2: refine the pixels whose corners differ (item tile_count + t).
             const AdaptiveSpec spec = AdaptiveSpec::from(aa, width, height);
             const float inv_S = 1.0f / static_cast<float>(spec.lattice());

@@ -94,31 +94,28 @@ void render_tiles(const ZbufferFrame& f, const RenderControl& control, const Gri
             read_raw(in, *v);
     };
     const auto rays = [](size_t) { return uint64_t{0}; };  // the zbuffer traces no rays
+    // Adaptive's refinement levels of tile t (the --aa-mask's bytes).
+    const auto mask_levels = [&](size_t t, auto&& each) {
+        if (!control.aa_mask) return;
+        const PixelRect r = raster.tile_rect(t);
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x)
+                each(control.aa_mask->level[static_cast<size_t>(y) * img.width + x]);
+    };
     // Colours (and terms) of tile t, counted in tile_stats[base + t], with adaptive's levels
     // when `levels`.
     const auto pixel_code = [&](auto&& render, size_t base, bool levels) {
-        return TileCode{
-            render,
-            [&, base, levels](size_t t, std::string& o) {
-                write_stats(o, tile_stats[base + t]);
-                append_rect(o, out, raster.tile_rect(t));
-                if (levels && control.aa_mask) {
-                    const PixelRect r = raster.tile_rect(t);
-                    for (int y = r.y0; y < r.y1; ++y)
-                        for (int x = r.x0; x < r.x1; ++x)
-                            append_raw(o, control.aa_mask->level[size_t(y) * img.width + x]);
-                }
-            },
-            [&, base, levels](size_t t, std::string_view& in) {
-                read_stats(in, tile_stats[base + t]);
-                read_rect(in, out, raster.tile_rect(t));
-                if (levels && control.aa_mask) {
-                    const PixelRect r = raster.tile_rect(t);
-                    for (int y = r.y0; y < r.y1; ++y)
-                        for (int x = r.x0; x < r.x1; ++x)
-                            read_raw(in, control.aa_mask->level[size_t(y) * img.width + x]);
-                }
-            }};
+        return TileCode{render,
+                        [&, base, levels](size_t t, std::string& o) {
+                            write_stats(o, tile_stats[base + t]);
+                            append_rect(o, out, raster.tile_rect(t));
+                            if (levels) mask_levels(t, [&](uint8_t v) { append_raw(o, v); });
+                        },
+                        [&, base, levels](size_t t, std::string_view& in) {
+                            read_stats(in, tile_stats[base + t]);
+                            read_rect(in, out, raster.tile_rect(t));
+                            if (levels) mask_levels(t, [&](uint8_t& v) { read_raw(in, v); });
+                        }};
     };
     switch (aa.mode) {
         case AaMode::none: {

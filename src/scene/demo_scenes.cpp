@@ -144,7 +144,8 @@ constexpr std::string_view kBunny = R"json({
 // exponent n grows from 1 (a broad sheen over the whole lit side) to 200 (a small sharp spot),
 // keyed nearly geometrically since the look changes most at small n, while the light sweeps
 // from the left to the right, so the highlight narrows and follows it. Exposure: the light is
-// ≈ 8 units from the sphere, Il/(d+K) ≈ 10/9 ≈ 1.1, so the lit side is ≈ Kd·cos θ + Ks·cos(α)^n + Ka, up to ≈ 1 in red.
+// ≈ 8 units from the sphere, Il/(d+K) ≈ 10/9 ≈ 1.1, so the lit side is ≈ Kd·cos θ + Ks·cos(α)^n +
+// Ka, up to ≈ 1 in red.
 constexpr std::string_view kHighlight = R"json({
   "image":  { "width": 640, "height": 480, "background": [0.05, 0.05, 0.08] },
   "camera": { "projection": "perspective", "position": [0, 1.6, 6], "look_at": [0, 0.9, 0],

@@ -162,6 +162,19 @@ TEST_F(Render, StatsJsonHasEveryKey) {
     EXPECT_EQ(list_dir(dir_), (std::set<std::string>{"x.png", "s.json"}));
 }
 
+TEST_F(Render, DefaultThreadsAreTheCoresTheProcessMayUse) {
+    // --threads 0 (the default) is the CPU affinity, which taskset (or mpirun's binding, or a
+    // container's cpuset) narrows: one core allowed, one thread.
+    if (find_on_path("taskset").empty()) GTEST_SKIP() << "no taskset (util-linux)";
+    const RunResult r =
+        run_program("taskset",
+                    {"-c", "0", LUZ_BINARY, "render", "demo:whitted", "--width", "32", "--height",
+                     "24", "-q", "-o", "x.png", "--stats", "s.json"},
+                    dir_);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(read_file(dir_ / "s.json"))["threads"], 1);
+}
+
 TEST_F(Render, QuietPrintsNothing) {
     const RunResult r = run_luz(
         {"render", "demo:primitives", "-o", "x.png", "--width", "32", "--height", "24", "--quiet"},

@@ -5,6 +5,7 @@
 
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "mpi/mpi_run.h"
@@ -99,6 +100,24 @@ TEST_F(CommandsMpi, ScenesRunsInEveryProcessAsUsual) {
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(count_lines_containing(r.out, "demo:whitted"), 2) << r.out;
     EXPECT_EQ(r.err, "");
+}
+
+TEST_F(CommandsMpi, ThreadsBeyondTheBindingAreWarnedOf) {
+    // Open MPI binds a process of -np 1 to one core: --threads 2 there shares it, and luz says
+    // so (README "Threads per process"); --bind-to none gives it every core, and no warning.
+    const std::vector<std::string> render = {"render",   "demo:whitted", "--width",   "32",
+                                             "--height", "24",           "--threads", "2",
+                                             "-q",       "-o",           "x.png"};
+    const RunResult bound = run_program("mpirun", mpirun_args(1, render), dir_);
+    ASSERT_EQ(bound.status, 0) << bound.err;
+    EXPECT_EQ(count_lines_containing(bound.err, "luz: warning: --threads 2, but mpirun bound"), 1)
+        << bound.err;
+    std::vector<std::string> unbound = mpirun_args(1, render);
+    unbound.insert(unbound.begin(), "--bind-to");
+    unbound.insert(unbound.begin() + 1, "none");
+    const RunResult free = run_program("mpirun", unbound, dir_);
+    ASSERT_EQ(free.status, 0) << free.err;
+    if (std::thread::hardware_concurrency() >= 2) EXPECT_EQ(free.err, "");
 }
 
 // Not an MpiTest: it holds wherever luz is built, with or without Open MPI.
