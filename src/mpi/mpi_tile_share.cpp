@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <chrono>
 #include <climits>
-#include <exception>
 #include <thread>
 
 #include "mpi/wire.h"
@@ -308,7 +307,11 @@ std::vector<std::pair<size_t, std::string>> MpiTileShare::end_pass() {
             const int before = finals_;
             const uint64_t messages = wire_.messages;
             serve();
-            if (wire_.messages == messages && finals_ == before) backoff.idle();
+            if (wire_.messages == messages && finals_ == before) {
+                backoff.idle();
+            } else {
+                backoff.busy();  // more may be on the way: look again soon
+            }
         }
         if (cancelled()) return elsewhere;
         if (everyone_ && size_ > 1) {
