@@ -1,6 +1,8 @@
 // The watertight ray–triangle test of Woop, Benthin and Wald (JCGT 2013), shared by triangle and
-// mesh shapes and the scene queries' BVH leaves.
+// mesh shapes and the scene queries' BVH leaves. Inlined: it is the inner loop of every mesh.
 #pragma once
+
+#include <type_traits>
 
 #include "geometry/hit.h"
 #include "geometry/mesh.h"
@@ -9,20 +11,56 @@
 namespace luz {
 
 /// A ray prepared once for the watertight ray–triangle test: the dominant axis kz of the
-/// direction, and the shear that maps the ray onto +z.
+/// direction, the shear that maps the ray onto +z, and the origin's components in that order.
 struct WatertightRay {
     Vec3 origin;
     int kx = 0, ky = 1, kz = 2;
     float Sx = 0, Sy = 0, Sz = 1;
+    float ox = 0, oy = 0, oz = 0;  ///< origin[kx], origin[ky], origin[kz]
 };
 /// Prepares ray r (any non-zero direction) for intersect_triangle().
 WatertightRay prepare_watertight(const Ray& r);
 
+namespace watertight_detail {
+
+static_assert(std::is_standard_layout_v<Vec3> && sizeof(Vec3) == 3 * sizeof(float));
+/// Component k of v by one indexed load (Vec3::operator[] chooses by comparisons).
+inline float at(const Vec3& v, int k) { return reinterpret_cast<const float*>(&v)[k]; }
+
+/// The three edge functions again in double, for when one of them is 0 in float.
+void edges_in_double(float Ax, float Ay, float Bx, float By, float Cx, float Cy, float& U, float& V,
+                     float& W);
+
+}  // namespace watertight_detail
+
 /// Watertight ray–triangle test: hit in (t_min, t_max) at t with barycentrics b1, b2 of p1,
 /// p2. Rays through an edge or vertex shared by several triangles (same float vertices) hit
 /// at least one of them. Both sides count.
-bool intersect_triangle(const WatertightRay& r, const Vec3& p0, const Vec3& p1, const Vec3& p2,
-                        float t_min, float t_max, float& t, float& b1, float& b2);
+inline bool intersect_triangle(const WatertightRay& r, const Vec3& p0, const Vec3& p1,
+                               const Vec3& p2, float t_min, float t_max, float& t, float& b1,
+                               float& b2) {
+    using watertight_detail::at;
+    // vertices relative to the origin (A = p0 − origin …), sheared so that the ray runs along +z
+    const float Az = at(p0, r.kz) - r.oz, Bz = at(p1, r.kz) - r.oz, Cz = at(p2, r.kz) - r.oz;
+    const float Ax = (at(p0, r.kx) - r.ox) - r.Sx * Az, Ay = (at(p0, r.ky) - r.oy) - r.Sy * Az;
+    const float Bx = (at(p1, r.kx) - r.ox) - r.Sx * Bz, By = (at(p1, r.ky) - r.oy) - r.Sy * Bz;
+    const float Cx = (at(p2, r.kx) - r.ox) - r.Sx * Cz, Cy = (at(p2, r.ky) - r.oy) - r.Sy * Cz;
+    // scaled barycentrics: 2D edge functions; exact in double when one is zero in float
+    float U = Cx * By - Cy * Bx, V = Ax * Cy - Ay * Cx, W = Bx * Ay - By * Ax;
+    if (U == 0.0f || V == 0.0f || W == 0.0f)
+        watertight_detail::edges_in_double(Ax, Ay, Bx, By, Cx, Cy, U, V, W);
+    if ((U < 0 || V < 0 || W < 0) && (U > 0 || V > 0 || W > 0)) return false;
+    const float det = U + V + W;
+    if (det == 0.0f) return false;
+    const float T = U * (r.Sz * Az) + V * (r.Sz * Bz) + W * (r.Sz * Cz);
+    const float inv_det = 1.0f / det;
+    const float tt = T * inv_det;
+    if (!(tt > t_min && tt < t_max)) return false;
+    t = tt;
+    b1 = V * inv_det;
+    b2 = W * inv_det;
+    return true;
+}
 
 /// The nearest hit among all triangles of `mesh` (in index order; ties keep the lowest index):
 /// hit.part = the triangle, hit.u, hit.v its barycentrics. hit.shape is left to the caller.
