@@ -1,7 +1,10 @@
 // Benchmark: luz's BVH (Bvh8 as scenes use it, and the binary Bvh) against Embree 3 rtcIntersect1
 // on the same OBJ triangles — primary and incoherent rays, 1 and 2 threads, hits compared ray by
-// ray; build times, bytes per triangle. Results: docs/BENCHMARKS.md.
+// ray; build times, bytes per triangle. Results: docs/BENCHMARKS.md. Besides OBJ files it
+// takes procedural meshes (--sphere N: scripts/make_big_mesh.py's bumpy sphere built in memory)
+// and appends machine-readable rows to --csv (bench/cost_growth.sh, "How cost grows").
 #include <embree3/rtcore.h>
+#include <sys/resource.h>
 #include <tbb/task_arena.h>
 #include <unistd.h>
 
@@ -38,8 +41,15 @@ using namespace luz;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr uint32_t kNoHit = 0xFFFFFFFFu;
 
+/// A mesh to measure: an OBJ file, or (sphere > 0) the bumpy sphere of N = sphere segments.
+struct MeshSource {
+    std::string path;
+    int sphere = 0;
+};
+
 struct Options {
-    std::vector<std::string> meshes;
+    std::vector<MeshSource> meshes;
+    std::string csv;                 ///< --csv: append one row per mesh and thread count here
     int size = 1024;                 ///< primary rays: size × size
     int reps = 5;                    ///< timed passes per engine and configuration (median)
     std::vector<int> threads{1, 2};  ///< thread counts for tracing and building
@@ -452,26 +462,91 @@ struct BuildRow {
     double luz2_bytes = 0, luz8_bytes = 0, medium_bytes = 0, high_bytes = 0,
            scene_bytes = 0;  ///< per triangle
     double leaf = 0;         ///< mean primitives per leaf
+    size_t vertices = 0;
+    /// --scene: build_scene() (mesh and BVH) and its BVH part (bvh_build_seconds), ms, median
+    /// of up to 3 builds on scene_threads threads (the largest thread count)
+    double scene_ms = 0, scene_bvh_ms = 0;
+    int scene_threads = 0;
+    int build_reps = 0;  ///< builds timed per engine and thread count
 };
+
+/// scripts/make_big_mesh.py's bumpy sphere (r = 1 + ripples in latitude and longitude), built
+/// in memory as the OBJ loader would give it: n segments around and n/2 rings, one vertex at
+/// each pole, counter-clockwise from outside, n·(n/2 − 1)·2 triangles; the same vertex and face
+/// order, the same formula in double, each coordinate rounded to the file's 6 decimals (so
+/// sphere_1024 is, to the float, the mesh bench/run_bvh_bench.sh writes).
+MeshData bumpy_sphere(int n) {
+    if (n < 8 || n % 2) throw std::runtime_error("--sphere N: N must be an even number >= 8");
+    const int rings = n / 2;
+    const double pi = 3.141592653589793;
+    const auto radius = [](double th, double ph) {
+        return 1.0 + 0.04 * std::sin(12 * th) * std::sin(15 * ph) +
+               0.015 * std::sin(60 * th + 3 * ph);
+    };
+    const auto six = [](double x) { return static_cast<float>(std::round(x * 1e6) / 1e6); };
+    MeshData d;
+    d.file = "sphere_" + std::to_string(n);
+    const size_t un = static_cast<size_t>(n);
+    d.positions.reserve(2 + (static_cast<size_t>(rings) - 1) * un);
+    d.positions.push_back({0.0f, six(radius(0.0, 0.0)), 0.0f});
+    for (int j = 1; j < rings; ++j) {
+        const double th = pi * j / rings, st = std::sin(th), ct = std::cos(th);
+        for (int i = 0; i < n; ++i) {
+            const double ph = 2 * pi * i / n, r = radius(th, ph);
+            d.positions.push_back(
+                {six(r * st * std::cos(ph)), six(r * ct), six(r * st * std::sin(ph))});
+        }
+    }
+    const uint32_t south = static_cast<uint32_t>(d.positions.size());
+    d.positions.push_back({0.0f, six(-radius(pi, 0.0)), 0.0f});
+    // vertex i (mod n) on ring j (1 .. rings-1), 0-based
+    const auto at = [&](int i, int j) {
+        return static_cast<uint32_t>(1 + static_cast<size_t>(j - 1) * un + (i % n));
+    };
+    const size_t triangles = un * (static_cast<size_t>(rings) - 1) * 2;
+    d.position.reserve(3 * triangles);
+    const auto face = [&](uint32_t a, uint32_t b, uint32_t c) {
+        d.position.insert(d.position.end(), {a, b, c});
+    };
+    for (int i = 0; i < n; ++i) face(0, at(i + 1, 1), at(i, 1));
+    for (int j = 1; j < rings - 1; ++j) {
+        for (int i = 0; i < n; ++i) {
+            const uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), e = at(i, j + 1);
+            face(a, b, c);
+            face(a, c, e);
+        }
+    }
+    for (int i = 0; i < n; ++i) face(south, at(i, rings - 1), at(i + 1, rings - 1));
+    d.normal.assign(d.position.size(), -1);
+    d.material.assign(triangles, -1);
+    return d;
+}
 
 std::string base_name(const std::string& path) {
     const size_t slash = path.find_last_of('/');
     return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
-void run_mesh(const std::string& path, const Options& opt, std::vector<Row>& rows,
+void run_mesh(const MeshSource& source, const Options& opt, std::vector<Row>& rows,
               std::vector<BuildRow>& builds) {
-    // 1. The mesh, through luz's OBJ loader and mesh code (flat: positions shared by corners).
+    // 1. The mesh, through luz's OBJ loader (or the sphere's MeshData made here) and mesh code
+    //    (flat: positions shared by corners).
     std::vector<std::string> warnings;
     ObjectDesc o;
     o.type = ShapeType::mesh;
     o.smooth = false;
     o.path = "objects.0";
-    o.file = path;
-    o.mesh = std::make_shared<const MeshData>(load_obj(path, false, warnings));
+    std::string name;
+    if (source.sphere > 0) {
+        o.mesh = std::make_shared<const MeshData>(bumpy_sphere(source.sphere));
+        o.file = name = o.mesh->file;
+    } else {
+        o.file = source.path;
+        o.mesh = std::make_shared<const MeshData>(load_obj(source.path, false, warnings));
+        name = base_name(source.path);
+    }
     const Mesh mesh = build_mesh(o);
     const size_t n_tri = mesh.triangle_count();
-    const std::string name = base_name(path);
     std::printf("\n== %s: %zu triangles, %zu vertices\n", name.c_str(), n_tri,
                 mesh.positions.size());
     std::fflush(stdout);
@@ -479,7 +554,9 @@ void run_mesh(const std::string& path, const Options& opt, std::vector<Row>& row
     BuildRow build;
     build.mesh = name;
     build.triangles = n_tri;
+    build.vertices = mesh.positions.size();
     const int build_reps = opt.build_reps > 0 ? opt.build_reps : n_tri > 200000 ? 5 : 21;
+    build.build_reps = build_reps;
 
     // 2. Build times. luz: triangle boxes + Bvh::build (+ the collapse to Bvh8), in a TBB arena
     //    of 1 or 2 threads made beforehand (as Embree's device is); Embree: rtcCommitScene on a
@@ -556,7 +633,21 @@ void run_mesh(const std::string& path, const Options& opt, std::vector<Row>& row
         desc.geometry.accel = Accel::bvh;
         desc.materials.resize(1);
         desc.objects = {o};
-        scene = std::make_unique<LuzScene>(LuzScene{build_scene(desc)});
+        // timed in an arena of the largest thread count (as the traced Embree scene's device)
+        tbb::task_arena arena(opt.threads.back());
+        arena.initialize();
+        std::vector<double> s, s_bvh;
+        for (int k = 0; k < std::min(build_reps, 3); ++k) {
+            const double t0 = now_seconds();
+            auto built = std::make_unique<LuzScene>();
+            arena.execute([&] { built->scene = build_scene(desc); });
+            s.push_back(now_seconds() - t0);
+            s_bvh.push_back(built->scene.bvh_build_seconds);
+            if (k == 0) scene = std::move(built);
+        }
+        build.scene_ms = 1000 * median(s);
+        build.scene_bvh_ms = 1000 * median(s_bvh);
+        build.scene_threads = opt.threads.back();
         build.scene_bytes = static_cast<double>(scene->scene.bvh_bytes() +
                                                 mesh.positions.capacity() * sizeof(Vec3) +
                                                 mesh.indices.capacity() * sizeof(uint32_t)) /
@@ -639,13 +730,86 @@ void run_mesh(const std::string& path, const Options& opt, std::vector<Row>& row
 }
 
 // ---------------------------------------------------------------------------------------------
+// --csv
+
+/// The CSV's columns: per mesh and thread count, the build times and bytes of the tables
+/// (luz_build_ms = Bvh8_Nt, embree_build_ms = med_Nt, luz_bytes_per_tri = scene_B, …) and,
+/// per ray set, Mrays/s (luz = the scene query, the tables' `scene`; luz_bvh8 = `Bvh8`).
+/// Columns without a value (no --scene; the scene build on another thread count) are empty.
+const char* const kRaySets[] = {"perspective", "orthographic", "incoherent"};
+
+std::string csv_header() {
+    std::string h =
+        "mesh,triangles,vertices,threads,size,reps,build_reps,luz_build_ms,luz_bvh2_build_ms,"
+        "embree_build_ms,embree_high_build_ms,luz_scene_build_ms,luz_scene_bvh_build_ms,"
+        "luz_bytes_per_tri,luz_bvh8_bytes_per_tri,luz_bvh2_bytes_per_tri,embree_bytes_per_tri,"
+        "embree_high_bytes_per_tri";
+    for (const char* set : kRaySets) {
+        const std::string r = set;
+        h += "," + r + "_rays,luz_" + r + "_mrays,luz_bvh8_" + r + "_mrays,luz_bvh2_" + r +
+             "_mrays,embree_" + r + "_mrays," + r + "_agree";
+    }
+    return h + ",max_rss_mib";
+}
+
+/// Appends the rows of one mesh (its BuildRow and its tracing rows) to opt.csv, with the
+/// header first if the file is new or empty; a file with another header is an error.
+void append_csv(const Options& opt, const BuildRow& b, const std::vector<Row>& rows) {
+    const std::string header = csv_header();
+    {
+        std::ifstream in(opt.csv);
+        std::string first;
+        if (in && std::getline(in, first) && !first.empty() && first != header)
+            throw std::runtime_error(opt.csv + ": has other columns (an older CSV?); remove it");
+    }
+    std::ofstream out(opt.csv, std::ios::app);
+    if (!out) throw std::runtime_error(opt.csv + ": cannot write");
+    if (out.tellp() == 0) out << header << "\n";
+    const auto num = [](double x, const char* fmt = "%.4f") {
+        char s[64];
+        std::snprintf(s, sizeof s, fmt, x);
+        return std::string(s);
+    };
+    struct rusage ru {};
+    getrusage(RUSAGE_SELF, &ru);
+    for (size_t i = 0; i < opt.threads.size(); ++i) {
+        const int t = opt.threads[i];
+        const bool scene_here = opt.scene && t == b.scene_threads;
+        out << b.mesh << ',' << b.triangles << ',' << b.vertices << ',' << t << ',' << opt.size
+            << ',' << opt.reps << ',' << b.build_reps << ',' << num(b.luz8_ms[i]) << ','
+            << num(b.luz2_ms[i]) << ',' << num(b.medium_ms[i]) << ',' << num(b.high_ms[i]) << ','
+            << (scene_here ? num(b.scene_ms) : "") << ',' << (scene_here ? num(b.scene_bvh_ms) : "")
+            << ',' << (opt.scene ? num(b.scene_bytes, "%.2f") : "") << ','
+            << num(b.luz8_bytes, "%.2f") << ',' << num(b.luz2_bytes, "%.2f") << ','
+            << num(b.medium_bytes, "%.2f") << ',' << num(b.high_bytes, "%.2f");
+        for (const char* set : kRaySets) {
+            const Row* r = nullptr;
+            for (const Row& x : rows)
+                if (x.mesh == b.mesh && x.threads == t && x.rays == set) r = &x;
+            if (!r) {
+                out << ",,,,,,";
+                continue;
+            }
+            out << ',' << r->count << ',' << (opt.scene ? num(r->scene) : "") << ',' << num(r->luz8)
+                << ',' << num(r->luz2) << ',' << num(r->embree) << ','
+                << num(static_cast<double>(r->agreement.agree()) /
+                           static_cast<double>(std::max<size_t>(1, r->count)),
+                       "%.6f");
+        }
+        out << ',' << num(static_cast<double>(ru.ru_maxrss) / 1024.0, "%.0f") << "\n";
+    }
+    if (!out) throw std::runtime_error(opt.csv + ": cannot write");
+}
+
+// ---------------------------------------------------------------------------------------------
 
 void usage(FILE* out) {
     std::fprintf(
         out,
         "usage: bvh_vs_embree [--size N] [--reps N] [--threads 1,2] [--idle-wait S] [--robust]\n"
         "                     [--scene] [--build-reps N] [--cpu-time] [--bins N] [--leaf N]\n"
-        "                     [--traversal-cost C] MESH.obj...\n"
+        "                     [--traversal-cost C] [--sphere N[,N...]] [--csv PATH]\n"
+        "                     [MESH.obj...]\n"
         "  Builds each OBJ mesh into luz's BVH and into Embree 3, traces N×N perspective and\n"
         "  orthographic primary rays (default 1024) and one incoherent ray per primary hit\n"
         "  with both (rtcIntersect1), on each thread count; prints Mrays/s (median of --reps\n"
@@ -656,13 +820,28 @@ void usage(FILE* out) {
         "  --bins, --leaf, --traversal-cost: luz's BvhOptions (default: its defaults).\n"
         "  --build-reps: builds timed per engine (default 21, or 5 above 200k triangles).\n"
         "  --cpu-time: rays per CPU second of the process instead of per wall second (only\n"
-        "  for comparing variants on a busy machine; not for published figures).\n");
+        "  for comparing variants on a busy machine; not for published figures).\n"
+        "  --sphere N: also (in command-line order) the bumpy sphere of scripts/make_big_mesh.py\n"
+        "  built in memory, N segments and N/2 rings, N·(N/2−1)·2 triangles, named sphere_N\n"
+        "  (repeatable, or a comma list; N even, >= 8).\n"
+        "  --csv PATH: append one row per mesh and thread count (build ms, bytes per triangle,\n"
+        "  Mrays/s per ray set; luz = the scene query with --scene) to PATH, a header first if\n"
+        "  it is new.\n");
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
     Options opt;
+    const auto int_list = [](const std::string& list) {
+        std::vector<int> v;
+        for (size_t p = 0; p < list.size();) {
+            const size_t q = list.find(',', p);
+            v.push_back(std::stoi(list.substr(p, q - p)));
+            p = q == std::string::npos ? list.size() : q + 1;
+        }
+        return v;
+    };
     try {
         for (int i = 1; i < argc; ++i) {
             const std::string a = argv[i];
@@ -676,12 +855,14 @@ int main(int argc, char** argv) {
                 opt.reps = std::stoi(next());
             } else if (a == "--threads") {
                 opt.threads.clear();
-                const std::string list = next();
-                for (size_t p = 0; p < list.size();) {
-                    const size_t q = list.find(',', p);
-                    opt.threads.push_back(std::stoi(list.substr(p, q - p)));
-                    p = q == std::string::npos ? list.size() : q + 1;
+                for (int t : int_list(next())) opt.threads.push_back(t);
+            } else if (a == "--sphere") {
+                for (int n : int_list(next())) {
+                    if (n < 8 || n % 2) throw std::runtime_error("--sphere: N must be even, >= 8");
+                    opt.meshes.push_back({"", n});
                 }
+            } else if (a == "--csv") {
+                opt.csv = next();
             } else if (a == "--idle-wait") {
                 opt.idle_wait = std::stod(next());
             } else if (a == "--robust") {
@@ -704,10 +885,10 @@ int main(int argc, char** argv) {
             } else if (!a.empty() && a[0] == '-') {
                 throw std::runtime_error("unknown option " + a);
             } else {
-                opt.meshes.push_back(a);
+                opt.meshes.push_back({a, 0});
             }
         }
-        if (opt.meshes.empty()) throw std::runtime_error("no mesh given");
+        if (opt.meshes.empty()) throw std::runtime_error("no mesh given (MESH.obj or --sphere N)");
         if (opt.size < 8 || opt.reps < 1 || opt.threads.empty())
             throw std::runtime_error("bad --size, --reps or --threads");
     } catch (const std::exception& e) {
@@ -727,7 +908,10 @@ int main(int argc, char** argv) {
                     opt.robust ? "robust" : "default", opt.size, opt.size, opt.reps);
         rtcReleaseDevice(probe);
         if (opt.idle_wait > 0) wait_for_idle(opt.idle_wait);
-        for (const std::string& m : opt.meshes) run_mesh(m, opt, rows, builds);
+        for (const MeshSource& m : opt.meshes) {
+            run_mesh(m, opt, rows, builds);
+            if (!opt.csv.empty()) append_csv(opt, builds.back(), rows);
+        }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bvh_vs_embree: %s\n", e.what());
         return 2;
