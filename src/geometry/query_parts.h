@@ -145,6 +145,9 @@ bool nearest_hit_bvh(const BuiltScene& scene, const Ray& r, float t_min, float t
                      IntersectCounters& counters);
 float transmittance_bvh(const BuiltScene& scene, const Materials& materials, const Ray& r,
                         float t_min, float t_max, IntersectCounters& counters);
+/// nearest_hit_bvh() of up to eight rays, traversed as one packet (query_packet.cpp).
+void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_min, float t_max,
+                      Hit* hits, bool* found, IntersectCounters& counters);
 
 /// Every shape and mesh triangle in scene order, shapes behind their bounds (query_all.cpp).
 bool nearest_hit_all(const BuiltScene& scene, const Ray& r, float t_min, float t_max, Hit& hit,

@@ -56,6 +56,16 @@ bool hit_bounds(const Bounds3& b, const Ray& r, const Vec3& inv_dir, float t_min
 bool nearest_hit(const BuiltScene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
                  IntersectCounters& counters);
 
+/// The most rays nearest_hits() takes at once.
+inline constexpr int kMaxPacket = 8;
+
+/// nearest_hit() of rays[0 … n) (1 ≤ n ≤ kMaxPacket), all over (t_min, t_max): found[k] and
+/// hits[k] (set when found) are bit for bit what nearest_hit() gives rays[k]. With the scene's
+/// BVH the rays go down it together, as a packet (query_packet.cpp): for coherent rays, such
+/// as neighbouring camera rays, faster than one by one; otherwise one by one.
+void nearest_hits(const BuiltScene& scene, const Ray* rays, int n, float t_min, float t_max,
+                  Hit* hits, bool* found, IntersectCounters& counters);
+
 /// The product of `transparency` over every surface r crosses in (t_min, t_max): 1 if none,
 /// 0 as soon as an opaque one is met (SPEC §1: vis_j; a closed glass shape counts twice). The
 /// crossings are counted per material and multiplied in material order, so the result does

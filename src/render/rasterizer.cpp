@@ -13,12 +13,6 @@ namespace {
 
 constexpr size_t kChunkSize = 16384;  // triangles per binning task (fixed: determinism)
 
-/// A vertex in clip space: x, y in half-image units times w, depth along the view, w.
-struct ClipVertex {
-    float x, y, depth, w;
-    Vec3 bary;  ///< barycentric coordinates in the original triangle
-};
-
 /// What binning needs to know of the frame.
 struct Binning {
     const TriangleMesh& mesh;
@@ -29,6 +23,19 @@ struct Binning {
     int tile;      ///< pixels per tile side
     int margin;    ///< pixels a triangle's box grows by when binned
 };
+
+/// std::lround(x) for |x| < 2^31, without the libm call: the integer part by truncation,
+/// then the fraction x − trunc(x) (exact, by Sterbenz's lemma) decides; halves go away from 0.
+int64_t round_half_away(double x) {
+    int64_t i = static_cast<int64_t>(x);
+    const double f = x - static_cast<double>(i);
+    if (f >= 0.5) {
+        ++i;
+    } else if (f <= -0.5) {
+        --i;
+    }
+    return i;
+}
 
 /// ⌊a / b⌋ and ⌈a / b⌉ for b > 0.
 int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
@@ -96,8 +103,8 @@ bool setup(const Binning& f, const ClipVertex* v, uint32_t triangle, RasterTrian
     for (int i = 0; i < 3; ++i) {
         const float iw = 1.0f / v[i].w;
         // px = (x+1)·W/2, py = (1−y)·H/2 (SPEC §1.3), in fixed point.
-        r.x[i] = static_cast<int32_t>(std::lround((double{v[i].x} * iw + 1.0) * sx));
-        r.y[i] = static_cast<int32_t>(std::lround((1.0 - double{v[i].y} * iw) * sy));
+        r.x[i] = static_cast<int32_t>(round_half_away((double{v[i].x} * iw + 1.0) * sx));
+        r.y[i] = static_cast<int32_t>(round_half_away((1.0 - double{v[i].y} * iw) * sy));
         r.depth[i] = v[i].depth;
         r.inv_w[i] = iw;
     }
@@ -108,7 +115,8 @@ bool setup(const Binning& f, const ClipVertex* v, uint32_t triangle, RasterTrian
     return area != 0;
 }
 
-/// Adds a set-up triangle to the bins of the tiles its bounding box touches.
+/// Keeps a set-up triangle and the tiles its bounding box touches (binning's first pass),
+/// counted in bins.tile_start[t + 1].
 void bin(const Binning& f, ChunkBins& bins, const RasterTriangle& r) {
     const auto pixel = [&](int32_t v, int grow) {
         return static_cast<int32_t>(floor_div(v, f.unit)) + grow;
@@ -118,19 +126,38 @@ void bin(const Binning& f, ChunkBins& bins, const RasterTriangle& r) {
     const int32_t lo_y = pixel(std::min({r.y[0], r.y[1], r.y[2]}), -f.margin);
     const int32_t hi_y = pixel(std::max({r.y[0], r.y[1], r.y[2]}), f.margin);
     if (hi_x < 0 || hi_y < 0 || lo_x >= f.width || lo_y >= f.height) return;
-    const int tx0 = std::max(0, lo_x / f.tile), tx1 = std::min(f.tiles_x - 1, hi_x / f.tile);
-    const int ty0 = std::max(0, lo_y / f.tile), ty1 = std::min(f.tiles_y - 1, hi_y / f.tile);
-    const auto index = static_cast<uint32_t>(bins.triangles.size());
+    const TileSpan span{std::max(0, lo_x / f.tile), std::min(f.tiles_x - 1, hi_x / f.tile),
+                        std::max(0, lo_y / f.tile), std::min(f.tiles_y - 1, hi_y / f.tile)};
     bins.triangles.push_back(r);
-    for (int ty = ty0; ty <= ty1; ++ty)
-        for (int tx = tx0; tx <= tx1; ++tx) bins.tile_lists[ty * f.tiles_x + tx].push_back(index);
+    bins.spans.push_back(span);
+    for (int ty = span.ty0; ty <= span.ty1; ++ty)
+        for (int tx = span.tx0; tx <= span.tx1; ++tx) ++bins.tile_start[ty * f.tiles_x + tx + 1];
 }
 
-/// Projects, clips and bins triangles [begin, end).
+/// Binning's second pass: every kept triangle's index into the lists of its tiles, in
+/// triangle order (tile_start holds the counts, then the offsets).
+void fill_tile_lists(const Binning& f, ChunkBins& bins) {
+    const size_t tiles = bins.tile_start.size() - 1;
+    for (size_t t = 0; t < tiles; ++t) bins.tile_start[t + 1] += bins.tile_start[t];
+    bins.tile_triangles.resize(bins.tile_start[tiles]);
+    thread_local std::vector<uint32_t> cursor;  // where tile t's next index goes
+    cursor.assign(bins.tile_start.begin(), bins.tile_start.end() - 1);
+    for (uint32_t index = 0; index < bins.spans.size(); ++index) {
+        const TileSpan& s = bins.spans[index];
+        for (int ty = s.ty0; ty <= s.ty1; ++ty)
+            for (int tx = s.tx0; tx <= s.tx1; ++tx)
+                bins.tile_triangles[cursor[ty * f.tiles_x + tx]++] = index;
+    }
+}
+
+/// Projects, clips and bins triangles [begin, end) (the buffers of `bins` reused).
 void bin_chunk(const Binning& f, size_t begin, size_t end, ChunkBins& bins) {
     const TriangleMesh& mesh = f.mesh;
     const float near = near_depth(f);
-    bins.tile_lists.assign(static_cast<size_t>(f.tiles_x) * f.tiles_y, {});
+    bins.triangles.clear();
+    bins.clip_bary.clear();
+    bins.spans.clear();
+    bins.tile_start.assign(static_cast<size_t>(f.tiles_x) * f.tiles_y + 1, 0);
     for (size_t t = begin; t < end; ++t) {
         ClipVertex v[3];
         unsigned outside_all = 0x1f, outside_any = 0;
@@ -162,6 +189,7 @@ void bin_chunk(const Binning& f, size_t begin, size_t end, ChunkBins& bins) {
             bin(f, bins, r);
         }
     }
+    fill_tile_lists(f, bins);
 }
 
 /// Rasterizes one triangle into a lattice's fragments (top-left fill rule). kCount: also counts
@@ -263,16 +291,19 @@ constexpr Fragment kEmptyFragment{std::numeric_limits<float>::infinity(), kNoTri
 }  // namespace
 
 Rasterizer::Rasterizer(const TriangleMesh& mesh, const Camera& camera, int width, int height,
-                       const RasterLayout& layout, int threads)
+                       const RasterLayout& layout, int threads, RasterSpare* spare)
     : perspective_(camera.projection == Projection::perspective),
       width_(width),
       height_(height),
       tiles_x_((width + layout.tile - 1) / layout.tile),
       tiles_y_((height + layout.tile - 1) / layout.tile),
-      layout_(layout) {
+      layout_(layout),
+      spare_(spare) {
+    if (spare_) buffers_ = spare_->take();
     // 1. Project every vertex.
     const auto& positions = mesh.positions;
-    std::vector<ClipVertex> vertices(positions.size());
+    std::vector<ClipVertex>& vertices = buffers_.vertices;
+    vertices.resize(positions.size());
     const size_t vertex_chunks = (positions.size() + kChunkSize - 1) / kChunkSize;
     parallel_items(threads, vertex_chunks, [&](size_t c) {
         const size_t end = std::min(positions.size(), (c + 1) * kChunkSize);
@@ -284,15 +315,20 @@ Rasterizer::Rasterizer(const TriangleMesh& mesh, const Camera& camera, int width
     const Binning f{mesh,     vertices, perspective_, width,       height,
                     tiles_x_, tiles_y_, layout.unit,  layout.tile, layout.margin};
     const size_t triangles = mesh.triangle_count();
-    chunks_.resize((triangles + kChunkSize - 1) / kChunkSize);
-    parallel_items(threads, chunks_.size(), [&](size_t c) {
-        bin_chunk(f, c * kChunkSize, std::min(triangles, (c + 1) * kChunkSize), chunks_[c]);
+    chunk_count_ = (triangles + kChunkSize - 1) / kChunkSize;
+    if (buffers_.chunks.size() < chunk_count_) buffers_.chunks.resize(chunk_count_);
+    parallel_items(threads, chunk_count_, [&](size_t c) {
+        bin_chunk(f, c * kChunkSize, std::min(triangles, (c + 1) * kChunkSize), buffers_.chunks[c]);
     });
+}
+
+Rasterizer::~Rasterizer() {
+    if (spare_) spare_->give(std::move(buffers_));
 }
 
 uint64_t Rasterizer::triangles() const {
     uint64_t n = 0;
-    for (const ChunkBins& c : chunks_) n += c.triangles.size();
+    for (size_t c = 0; c < chunk_count_; ++c) n += buffers_.chunks[c].triangles.size();
     return n;
 }
 
@@ -301,8 +337,10 @@ void Rasterizer::rasterize(size_t t, const Lattice& lat, Fragment* frags, uint32
     std::fill(frags, frags + points, kEmptyFragment);
     if (tests) std::fill(tests, tests + points, 0u);
     // Chunks in order, so that ties resolve the same way always.
-    for (const ChunkBins& c : chunks_) {
-        for (uint32_t index : c.tile_lists[t]) {
+    for (size_t k = 0; k < chunk_count_; ++k) {
+        const ChunkBins& c = buffers_.chunks[k];
+        for (uint32_t i = c.tile_start[t], end = c.tile_start[t + 1]; i < end; ++i) {
+            const uint32_t index = c.tile_triangles[i];
             const RasterTriangle& r = c.triangles[index];
             const std::array<Vec3, 3>* clip_bary = r.clip >= 0 ? &c.clip_bary[r.clip] : nullptr;
             if (tests) {

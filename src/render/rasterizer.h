@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <mutex>
 #include <vector>
 
 #include "geometry/triangle_mesh.h"
@@ -53,11 +54,50 @@ struct RasterTriangle {
     int32_t clip;        ///< −1, or index of its vertices' barycentrics in ChunkBins::clip_bary
 };
 
-/// The triangles one chunk of the mesh sends to each tile, in triangle order.
+/// The tiles a binned triangle's box covers: [tx0, tx1] × [ty0, ty1].
+struct TileSpan {
+    int32_t tx0, tx1, ty0, ty1;
+};
+
+/// The triangles one chunk of the mesh sends to each tile, in triangle order: tile t's are
+/// tile_triangles[tile_start[t] .. tile_start[t + 1]), indices into `triangles`.
 struct ChunkBins {
     std::vector<RasterTriangle> triangles;
     std::vector<std::array<Vec3, 3>> clip_bary;
-    std::vector<std::vector<uint32_t>> tile_lists;  ///< per tile: indices into triangles
+    std::vector<TileSpan> spans;  ///< per triangle: its tiles (binning's first pass)
+    std::vector<uint32_t> tile_start;
+    std::vector<uint32_t> tile_triangles;
+};
+
+/// A vertex in clip space: x, y in half-image units times w, depth along the view, w.
+struct ClipVertex {
+    float x, y, depth, w;
+    Vec3 bary;  ///< barycentric coordinates in the original triangle
+};
+
+/// A frame's binning buffers, kept between frames so that the next frame of the same geometry
+/// reuses their memory instead of allocating (and faulting in) it again.
+struct RasterBuffers {
+    std::vector<ClipVertex> vertices;
+    std::vector<ChunkBins> chunks;
+};
+
+/// Where one frame leaves its buffers for the next (ZbufferGeometry holds one). Thread-safe: a
+/// frame takes the spare buffers if there are any, else starts empty.
+class RasterSpare {
+  public:
+    RasterBuffers take() {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        return std::move(buffers_);
+    }
+    void give(RasterBuffers&& b) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        buffers_ = std::move(b);
+    }
+
+  private:
+    std::mutex mutex_;
+    RasterBuffers buffers_;
 };
 
 /// One frame's rasterizer: the mesh projected, clipped and binned once; then each tile
@@ -66,9 +106,13 @@ class Rasterizer {
   public:
     /// Projects `mesh` through `camera` onto a width × height image, clips its triangles
     /// against the camera plane and a guard band and bins them into the tiles of `layout`
-    /// (in parallel on `threads`; the same bins for any thread count).
+    /// (in parallel on `threads`; the same bins for any thread count). With `spare`, its
+    /// buffers are reused and left there again for the next frame.
     Rasterizer(const TriangleMesh& mesh, const Camera& camera, int width, int height,
-               const RasterLayout& layout, int threads);
+               const RasterLayout& layout, int threads, RasterSpare* spare = nullptr);
+    ~Rasterizer();
+    Rasterizer(const Rasterizer&) = delete;
+    Rasterizer& operator=(const Rasterizer&) = delete;
 
     int width() const { return width_; }
     int height() const { return height_; }
@@ -98,7 +142,9 @@ class Rasterizer {
     bool perspective_;
     int width_, height_, tiles_x_, tiles_y_;
     RasterLayout layout_;
-    std::vector<ChunkBins> chunks_;
+    RasterSpare* spare_;
+    RasterBuffers buffers_;
+    size_t chunk_count_ = 0;  ///< chunks of this frame (buffers_ may hold more)
 };
 
 }  // namespace luz

@@ -19,8 +19,7 @@ void render_ray_traced(const BuiltScene& scene, const Settings& settings,
     // said once, when a sample traces more than kExplodingTreeRays rays and min_weight is 0.
     std::atomic<bool> warned{false};
     const bool watch = control.warning && settings.render.min_weight == 0;
-    auto watch_sample = [&](uint64_t before, const TraceCounters& c) {
-        const uint64_t rays = work_of(c) - before;
+    auto watch_rays = [&](uint64_t rays) {
         if (!watch || rays <= kExplodingTreeRays || warned.exchange(true)) return;
         control.warning("a sample traced " + std::to_string(rays) +
                         " rays: the ray tree grows as 2^depth on reflective and transparent "
@@ -29,28 +28,46 @@ void render_ray_traced(const BuiltScene& scene, const Settings& settings,
                         "); render.min_weight (e.g. --set render.min_weight=0.01) stops rays "
                         "that weigh little, or lower render.max_depth");
     };
+    auto watch_sample = [&](uint64_t before, const TraceCounters& c) {
+        watch_rays(work_of(c) - before);
+    };
     std::vector<TraceCounters> counters;
-    // Samples of `sample` (the colour, or the colour and its terms) into `into`.
-    auto run = [&](auto sample, auto& into) {
-        return sample_image(
+    SamplerCounts counts;
+    if (control.terms && control.terms->any()) {  // the colour and its terms (SPEC §1.5)
+        // One sample at a time: each sample's `tests` term counts its own tests.
+        TermOut term_out{out, *control.terms};
+        counts = sample_image(
             settings.render.antialias, w, h, control,
             [&](float x, float y, TraceCounters& c) {
                 const uint64_t before = work_of(c);
-                const auto s = sample(x, y, c);
+                const TermSample s = tracer.sample_terms(x, y, c);
                 watch_sample(before, c);
                 return s;
             },
-            into, counters, control.aa_mask);
-    };
-    SamplerCounts counts;
-    if (control.terms && control.terms->any()) {  // the colour and its terms (SPEC §1.5)
-        TermOut term_out{out, *control.terms};
-        counts =
-            run([&](float x, float y, TraceCounters& c) { return tracer.sample_terms(x, y, c); },
-                term_out);
+            term_out, counters, control.aa_mask);
     } else {
-        counts =
-            run([&](float x, float y, TraceCounters& c) { return tracer.sample(x, y, c); }, out);
+        // The colour, one sample at a time or neighbouring samples together (their camera rays
+        // traced as a packet): the same bits either way.
+        struct Colour {
+            const RayTracer& tracer;
+            const decltype(watch_rays)& watch;
+            Rgb operator()(float x, float y, TraceCounters& c) const {
+                const uint64_t before = work_of(c);
+                const Rgb s = tracer.sample(x, y, c);
+                watch(work_of(c) - before);
+                return s;
+            }
+            void batch(const float* xs, const float* ys, int n, TraceCounters& c, Rgb* o) const {
+                uint64_t rays[64];
+                for (int first = 0; first < n; first += 64) {
+                    const int m = std::min(64, n - first);
+                    tracer.samples(xs + first, ys + first, m, c, o + first, rays);
+                    for (int k = 0; k < m; ++k) watch(rays[k]);
+                }
+            }
+        };
+        counts = sample_image(settings.render.antialias, w, h, control, Colour{tracer, watch_rays},
+                              out, counters, control.aa_mask);
     }
     for (const TraceCounters& c : counters) {
         stats.rays_primary += c.primary;

@@ -78,7 +78,8 @@ Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& 
 
 template <bool kRecord, bool kTerms>
 Rgb RayTracer::trace_impl(const Ray& ray, int depth, float weight, TraceCounters& counters,
-                          float& distance, RayTree* tree_in, TermSample* terms_in) const {
+                          float& distance, RayTree* tree_in, TermSample* terms_in,
+                          const std::pair<bool, Hit>* primary) const {
     // Cancelled: return at once, so that even an exploding ray tree stops within a moment (a
     // relaxed load per ray: no measurable cost).
     if (cancel_ && cancel_->load(std::memory_order_relaxed)) {
@@ -102,10 +103,12 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, float weight, TraceCounters
     };
     // The primary ray's terms (SPEC §1.5), filled as the numbers are computed.
     TermSample* const out = kTerms ? terms_in : nullptr;
-    // Nearest hit among objects and visible lights.
+    // Nearest hit among objects (unless the caller found it) and visible lights.
     float t_max = kInfinity;
     Hit hit;
-    const bool hit_object = nearest_hit(scene_, ray, 0.0f, t_max, hit, counters.tests);
+    if (primary) hit = primary->second;
+    const bool hit_object =
+        primary ? primary->first : nearest_hit(scene_, ray, 0.0f, t_max, hit, counters.tests);
     if (hit_object) t_max = hit.t;
     const int light = nearest_light(ray, t_max, counters);
     distance = t_max;
@@ -263,6 +266,40 @@ Rgb RayTracer::sample(float px, float py, TraceCounters& counters) const {
                                                    std::chrono::steady_clock::now() - start)
                                                    .count());
     return c;
+}
+
+void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& counters,
+                        Rgb* out, uint64_t* rays) const {
+    for (int first = 0; first < n; first += kMaxPacket) {
+        const int m = std::min(kMaxPacket, n - first);
+        Ray camera_rays[kMaxPacket];
+        Hit hits[kMaxPacket];
+        bool found[kMaxPacket] = {};
+        for (int k = 0; k < m; ++k) camera_rays[k] = camera_.ray(px[first + k], py[first + k]);
+        // Timed as sample() times: a packet holding a kTimedSampleEvery-th sample, whole.
+        const uint64_t i0 = counters.primary, i1 = i0 + static_cast<uint64_t>(m) - 1;
+        const bool timed = i0 % kTimedSampleEvery == 0 || i0 / kTimedSampleEvery != i1 / kTimedSampleEvery;
+        const auto start = std::chrono::steady_clock::now();
+        counters.tests.timing = timed;
+        if (!(cancel_ && cancel_->load(std::memory_order_relaxed)))
+            nearest_hits(scene_, camera_rays, m, 0.0f, kInfinity, hits, found, counters.tests);
+        for (int k = 0; k < m; ++k) {
+            const uint64_t before = work_of(counters);
+            ++counters.primary;
+            const std::pair<bool, Hit> primary{found[k], hits[k]};
+            float distance;
+            out[first + k] = trace_impl<false>(camera_rays[k], 0, 1.0f, counters, distance,
+                                               nullptr, nullptr, &primary);
+            if (rays) rays[first + k] = work_of(counters) - before;
+        }
+        counters.tests.timing = false;
+        if (timed) {
+            counters.timed_ns +=
+                static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                          std::chrono::steady_clock::now() - start)
+                                          .count());
+        }
+    }
 }
 
 TermSample RayTracer::sample_terms(float px, float py, TraceCounters& counters) const {

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "geometry/scene.h"
@@ -77,6 +78,12 @@ class RayTracer {
     /// call (counted in `counters`) is timed (TraceCounters::timed_ns, tests.query_ns).
     Rgb sample(float px, float py, TraceCounters& counters) const;
 
+    /// sample() at (px[k], py[k]) for k < n, into out[k] (the same bits), with the camera rays
+    /// of up to kMaxPacket neighbouring points found as one packet (nearest_hits()). When
+    /// `rays` is set, rays[k] receives the rays sample k traced, its primary ray included.
+    void samples(const float* px, const float* py, int n, TraceCounters& counters, Rgb* out,
+                 uint64_t* rays = nullptr) const;
+
     /// The same sample with its terms (SPEC §1.5), taken from the numbers trace() and shade()
     /// compute at the primary hit; its colour has the bits sample() gives.
     TermSample sample_terms(float px, float py, TraceCounters& counters) const;
@@ -88,9 +95,12 @@ class RayTracer {
     /// carries none of the recording's branches and state. kTerms: also fills `terms` with this
     /// ray's terms (a primary ray; its children are traced without).
     /// `weight`: the product of the coefficients that scale this ray (1 for a primary ray).
+    /// `primary`: the ray's nearest object hit when the caller has found it already (found,
+    /// hit), as nearest_hit() gives it.
     template <bool kRecord, bool kTerms = false>
     Rgb trace_impl(const Ray& ray, int depth, float weight, TraceCounters& counters,
-                   float& distance, RayTree* tree_in, TermSample* terms = nullptr) const;
+                   float& distance, RayTree* tree_in, TermSample* terms = nullptr,
+                   const std::pair<bool, Hit>* primary = nullptr) const;
 
     /// The nearest visible light sphere along ray within (0, t_max), or −1.
     int nearest_light(const Ray& ray, float& t_max, TraceCounters& counters) const;

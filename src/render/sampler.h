@@ -373,6 +373,17 @@ void read_rect(std::string_view& in, Image& img, const PixelRect& r);
 void append_rect(std::string& out, const TermOut& o, const PixelRect& r);
 void read_rect(std::string_view& in, TermOut& o, const PixelRect& r);
 
+/// The samples at (xs[k], ys[k]) for k < n into out[k]: by colour.batch() when the colour has
+/// one (the ray tracer's, which traces neighbouring camera rays as packets), else one by one.
+template <class Colour, class Counters, class S>
+void sample_points(Colour& colour, const float* xs, const float* ys, int n, Counters& c, S* out) {
+    if constexpr (requires { colour.batch(xs, ys, n, c, out); }) {
+        colour.batch(xs, ys, n, c, out);
+    } else {
+        for (int k = 0; k < n; ++k) out[k] = colour(xs[k], ys[k], c);
+    }
+}
+
 /// Renders an image with the antialiasing `aa`: `colour(x, y, counters)` gives the sample at
 /// pixel-space point (x, y) — an Rgb colour, or a TermSample (its colour and terms), put into
 /// `out` (an Image, or a TermOut) — and may count into `counters` (one Counters per work item, in
@@ -444,9 +455,18 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                                      Counters c{};
                                      {
                                          PixelProgress::Item<Counters> tick{progress, c};
+                                         // a row of pixel centres at a time
+                                         const int n = r.width();
+                                         float xs[kSamplerTile], ys[kSamplerTile];
+                                         S row[kSamplerTile];
                                          for (int y = r.y0; y < r.y1; ++y) {
-                                             for (int x = r.x0; x < r.x1; ++x) {
-                                                 put(out, x, y, colour(x + 0.5f, y + 0.5f, c));
+                                             for (int i = 0; i < n; ++i) {
+                                                 xs[i] = (r.x0 + i) + 0.5f;
+                                                 ys[i] = y + 0.5f;
+                                             }
+                                             sample_points(colour, xs, ys, n, c, row);
+                                             for (int i = 0; i < n; ++i) {
+                                                 put(out, r.x0 + i, y, row[i]);
                                                  tick.pixel();
                                              }
                                          }
@@ -473,21 +493,36 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                         for (int i = region.x0; i < region.x1; ++i) {
                             const bool inside =
                                 i >= tile.x0 && i < tile.x1 && j >= tile.y0 && j < tile.y1;
+                            // the pixel's needed samples at once, in chunks
+                            constexpr int kChunk = 64;
+                            float xs[kChunk], ys[kChunk];
+                            S* dst[kChunk];
+                            S got[kChunk];
+                            int n = 0;
+                            const auto flush = [&] {
+                                sample_points(colour, xs, ys, n, c, got);
+                                for (int k = 0; k < n; ++k) *dst[k] = got[k];
+                                counts[t].samples += static_cast<uint64_t>(n);
+                                n = 0;
+                            };
                             for (int b = 0; b < s; ++b) {
-                                S* dst =
+                                S* row =
                                     &buf[static_cast<size_t>((j - region.y0) * s + b) * stride +
                                          (i - region.x0) * s];
                                 for (int a = 0; a < s; ++a) {
                                     float x, y;
                                     g.position(i, j, a, b, x, y);
                                     if (inside || g.needed(tile, x, y)) {
-                                        dst[a] = colour(x, y, c);
-                                        ++counts[t].samples;
+                                        xs[n] = x;
+                                        ys[n] = y;
+                                        dst[n++] = &row[a];
+                                        if (n == kChunk) flush();
                                     } else {
-                                        dst[a] = S{};
+                                        row[a] = S{};
                                     }
                                 }
                             }
+                            if (n > 0) flush();
                             if (inside) tick.pixel();
                         }
                     }

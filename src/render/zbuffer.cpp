@@ -200,6 +200,7 @@ void append_triangles_from(size_t first_index, int32_t material, ZbufferGeometry
 
 ZbufferGeometry prepare_zbuffer(const BuiltScene& scene, const Settings& settings) {
     ZbufferGeometry g;
+    g.raster_spare = std::make_shared<RasterSpare>();
     const int level = scene.geometry.tessellation;
     for (const Shape& s : scene.shapes) {
         const size_t first = g.mesh.indices.size();
@@ -253,7 +254,8 @@ void render_zbuffer(const BuiltScene& scene, const Settings& settings,
     }
 
     // 1–2. Project every vertex; clip and bin the triangles into tiles.
-    const Rasterizer raster(geometry.mesh, camera, img.width, img.height, layout, control.threads);
+    const Rasterizer raster(geometry.mesh, camera, img.width, img.height, layout, control.threads,
+                            geometry.raster_spare.get());
     stats.triangles += raster.triangles();
     const ZbufferFrame f{scene,  settings, geometry,
                          raster, camera,   settings.camera.projection == Projection::perspective};

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "geometry/scene.h"
@@ -13,12 +14,16 @@
 
 namespace luz {
 
+class RasterSpare;
+
 /// The scene's triangles, tessellated once, in world space; a triangle's material is that of
 /// its shape. Planes and light spheres are included (planes as view-covering quads).
 struct ZbufferGeometry {
     TriangleMesh mesh;
     std::vector<int32_t> triangle_material;  ///< material index, or −1 − light for a light sphere
     std::vector<Vec3> triangle_normal;       ///< unit outward geometric normal per triangle
+    /// The last frame's binning buffers, for the next frame to reuse (set by prepare_zbuffer).
+    std::shared_ptr<RasterSpare> raster_spare;
 };
 
 /// Tessellates every shape of `scene` at its `render.tessellation` level.

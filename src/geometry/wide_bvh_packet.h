@@ -1,0 +1,132 @@
+// The 8-wide BVH traversed by a packet of up to eight rays at once (WideBvh::nearest() for each
+// ray, in lock step): every child box is tested for all the packet's rays side by side, with
+// per ray the very arithmetic of hit_wide() (the same boxes hit, at the same entry distances),
+// and a child is visited by the rays that hit it. Coherent rays (neighbouring camera rays) share
+// most nodes, so a node's fetch, its tests and the stack work serve eight rays.
+//
+//     float t_max[8] = {...};  // per ray, lowered by test() as hits are found
+//     nearest_packet(bvh, packet, packet.all(), t_min, t_max, box_tests,
+//                    [&](uint32_t slot, unsigned lanes) { ... });  // the rays in `lanes`
+#pragma once
+
+#include <cstdint>
+
+#include "geometry/ray_packet.h"
+#include "geometry/wide_bvh.h"
+
+namespace luz {
+
+namespace packet_detail {
+
+/// The packet prepared for box tests: per ray 1/direction and which plane of a slab is near.
+struct BoxRays {
+    Lane8f o[3], inv[3];
+    Lane8i negative[3];  ///< 1/direction < 0 (−∞ for a −0 component): the near plane is hi
+
+    explicit BoxRays(const RayPacket& p) {
+        for (int a = 0; a < 3; ++a) {
+            o[a] = p.o[a];
+            inv[a] = lanes(1.0f) / p.d[a];
+            negative[a] = inv[a] < lanes(0.0f);
+        }
+    }
+};
+
+/// Child k of n against every ray over [t_min, t_max(lane)]: the rays that hit it, their entry
+/// distances in `entry`. Lane for lane the arithmetic of hit_wide().
+inline Lane8i hit_child(const Bvh8::Node& n, int k, const BoxRays& r, Lane8f t_min, Lane8f t_max,
+                        Lane8f& entry) {
+    Lane8f tn = t_min, tf = t_max;
+    const Lane8f scale = lanes(bvh_detail::kExitScale);
+    for (int a = 0; a < 3; ++a) {
+        const Lane8f lo = lanes(n.lo[a][k]), hi = lanes(n.hi[a][k]);
+        const Lane8f near_plane = r.negative[a] ? hi : lo;
+        const Lane8f far_plane = r.negative[a] ? lo : hi;
+        const Lane8f t0 = (near_plane - r.o[a]) * r.inv[a];
+        const Lane8f t1 = ((far_plane - r.o[a]) * r.inv[a]) * scale;
+        tn = t0 > tn ? t0 : tn;  // NaN → tn
+        tf = t1 < tf ? t1 : tf;  // NaN → tf
+    }
+    entry = tn;
+    return tn <= tf;
+}
+
+/// with_margin() lane by lane.
+inline Lane8f with_margin(Lane8f t_max) { return t_max + t_max * lanes(0x1p-16f); }
+
+}  // namespace packet_detail
+
+/// For each ray of `active` (bit k: lane k of p), as bvh.nearest() would for it alone:
+/// test(slot, lanes) for the slots of every leaf whose box those rays meet before their t_max
+/// (with the same margin); test() lowers t_max[lane] as it finds hits. Children are visited
+/// nearest first for the packet (by its rays' smallest entry). Adds 8 per node per ray to
+/// box_tests, as the single-ray traversal counts.
+template <class Test>
+void nearest_packet(const Bvh8& bvh, const RayPacket& p, unsigned active, float t_min, float* t_max,
+                    uint64_t& box_tests, Test&& test) {
+    using namespace packet_detail;
+    const std::vector<Bvh8::Node>& nodes = bvh.nodes();
+    if (nodes.empty() || active == 0) return;
+    const BoxRays rays(p);
+    const Lane8f t_min8 = lanes(t_min);
+    struct Entry {
+        Lane8f entry;  // per ray
+        uint32_t child, count, lanes;
+        float key;  // the smallest entry among `lanes`: the visiting order
+    };
+    constexpr int kStack = 7 * Bvh::kMaxDepth + 4;
+    Entry stack[kStack];
+    int top = 0;
+    Entry cur{lanes(t_min), 0, 0, active, t_min};
+    for (;;) {
+        if (cur.count > 0) {
+            for (uint32_t i = cur.child, end = cur.child + cur.count; i < end; ++i)
+                test(i, cur.lanes);
+        } else {
+            const Bvh8::Node& n = nodes[cur.child];
+            box_tests += 8 * static_cast<uint64_t>(__builtin_popcount(cur.lanes));
+            const Lane8f limit = with_margin(load_lanes(t_max));
+            const Lane8i in_packet = lane_mask(cur.lanes);
+            Entry h[8];
+            int m = 0;
+            for (int k = 0; k < 8; ++k) {
+                if (n.count[k] == 0 && n.child[k] == Bvh8::Node::kUnused) continue;
+                Lane8f entry;
+                const unsigned hit =
+                    lane_bits(hit_child(n, k, rays, t_min8, limit, entry) & in_packet);
+                if (hit == 0) continue;
+                float key = entry[__builtin_ctz(hit)];
+                for (unsigned b = hit & (hit - 1); b != 0; b &= b - 1) {
+                    const float e = entry[__builtin_ctz(b)];
+                    key = e < key ? e : key;
+                }
+                h[m++] = {entry, n.child[k], n.count[k], hit, key};
+            }
+            if (m > 0) {
+                // farthest first onto the stack (insertion sort, m ≤ 8), the nearest now
+                for (int i = 1; i < m; ++i) {
+                    for (int j = i; j > 0 && h[j - 1].key < h[j].key; --j) {
+                        const Entry s = h[j];
+                        h[j] = h[j - 1];
+                        h[j - 1] = s;
+                    }
+                }
+                for (int i = 0; i + 1 < m; ++i) stack[top++] = h[i];
+                cur = h[m - 1];
+                continue;
+            }
+        }
+        // next entry from the stack, with only its rays that enter it before their nearest hit
+        for (;;) {
+            if (top == 0) return;
+            Entry& s = stack[--top];
+            s.lanes &= lane_bits(s.entry <= with_margin(load_lanes(t_max)));
+            if (s.lanes != 0) {
+                cur = s;
+                break;
+            }
+        }
+    }
+}
+
+}  // namespace luz
