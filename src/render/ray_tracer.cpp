@@ -279,7 +279,8 @@ void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& 
         // Timed as sample() times: a packet holding a kTimedSampleEvery-th sample, whole.
         const uint64_t i0 = counters.primary, i1 = i0 + static_cast<uint64_t>(m) - 1;
         const bool timed = i0 % kTimedSampleEvery == 0 || i0 / kTimedSampleEvery != i1 / kTimedSampleEvery;
-        const auto start = std::chrono::steady_clock::now();
+        const auto start = timed ? std::chrono::steady_clock::now()
+                                 : std::chrono::steady_clock::time_point{};
         counters.tests.timing = timed;
         if (!(cancel_ && cancel_->load(std::memory_order_relaxed)))
             nearest_hits(scene_, camera_rays, m, 0.0f, kInfinity, hits, found, counters.tests);
