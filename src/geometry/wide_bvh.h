@@ -205,6 +205,19 @@ inline int hit_wide(const WideBvhNode<W>& n, const WideRay<W>& r, float t_min, f
 #endif
 }
 
+/// Orders m ≤ 8 hit children farthest first (insertion sort by key(child)): the traversals
+/// push all but the last and visit the last, the nearest, now.
+template <class Entry, class Key>
+inline void sort_farthest_first(Entry* h, int m, Key&& key) {
+    for (int i = 1; i < m; ++i) {
+        for (int j = i; j > 0 && key(h[j - 1]) < key(h[j]); --j) {
+            const Entry s = h[j];
+            h[j] = h[j - 1];
+            h[j - 1] = s;
+        }
+    }
+}
+
 }  // namespace bvh_detail
 
 template <int W>
@@ -256,14 +269,8 @@ void WideBvh<W>::nearest(const Ray& r, float t_min, float& t_max, uint64_t& box_
                     h[m++] = {n.child[k], n.count[k], e[k]};
                     mask &= mask - 1;
                 } while (mask != 0);
-                // farthest first onto the stack (insertion sort, m ≤ W), the nearest now
-                for (int i = 1; i < m; ++i) {
-                    for (int j = i; j > 0 && h[j - 1].entry < h[j].entry; --j) {
-                        const Entry s = h[j];
-                        h[j] = h[j - 1];
-                        h[j - 1] = s;
-                    }
-                }
+                // farthest first onto the stack, the nearest now
+                sort_farthest_first(h, m, [](const Entry& x) { return x.entry; });
                 for (int i = 0; i + 1 < m; ++i) stack[top++] = h[i];
                 cur = h[m - 1];
                 continue;

@@ -103,14 +103,8 @@ void nearest_packet(const Bvh8& bvh, const RayPacket& p, unsigned active, float 
                 h[m++] = {entry, n.child[k], n.count[k], hit, key};
             }
             if (m > 0) {
-                // farthest first onto the stack (insertion sort, m ≤ 8), the nearest now
-                for (int i = 1; i < m; ++i) {
-                    for (int j = i; j > 0 && h[j - 1].key < h[j].key; --j) {
-                        const Entry s = h[j];
-                        h[j] = h[j - 1];
-                        h[j - 1] = s;
-                    }
-                }
+                // farthest first onto the stack, the nearest now
+                bvh_detail::sort_farthest_first(h, m, [](const Entry& x) { return x.key; });
                 for (int i = 0; i + 1 < m; ++i) stack[top++] = h[i];
                 cur = h[m - 1];
                 continue;

@@ -23,6 +23,13 @@ bool hit_light_sphere(const Ray& ray, const Vec3& c, float r, float t_max, float
     return world_sphere_roots(c, r, ray, t0, t1) && nearest_root(t0, t1, 0.0f, t_max, t);
 }
 
+/// Nanoseconds from `start` to now (the timed samples).
+uint64_t nanoseconds_since(std::chrono::steady_clock::time_point start) {
+    return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                     std::chrono::steady_clock::now() - start)
+                                     .count());
+}
+
 /// Per-thread light terms of a primary hit whose terms are asked for (no allocation per sample).
 std::span<LightTerm> light_scratch(size_t lights) {
     thread_local std::vector<LightTerm> scratch;
@@ -262,14 +269,12 @@ Rgb RayTracer::sample(float px, float py, TraceCounters& counters) const {
     counters.tests.timing = true;
     const Rgb c = trace_impl<false>(camera_.ray(px, py), 0, 1.0f, counters, distance, nullptr);
     counters.tests.timing = false;
-    counters.timed_ns += static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                                   std::chrono::steady_clock::now() - start)
-                                                   .count());
+    counters.timed_ns += nanoseconds_since(start);
     return c;
 }
 
-void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& counters,
-                        Rgb* out, uint64_t* rays) const {
+void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& counters, Rgb* out,
+                        uint64_t* rays) const {
     for (int first = 0; first < n; first += kMaxPacket) {
         const int m = std::min(kMaxPacket, n - first);
         Ray camera_rays[kMaxPacket];
@@ -278,9 +283,10 @@ void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& 
         for (int k = 0; k < m; ++k) camera_rays[k] = camera_.ray(px[first + k], py[first + k]);
         // Timed as sample() times: a packet holding a kTimedSampleEvery-th sample, whole.
         const uint64_t i0 = counters.primary, i1 = i0 + static_cast<uint64_t>(m) - 1;
-        const bool timed = i0 % kTimedSampleEvery == 0 || i0 / kTimedSampleEvery != i1 / kTimedSampleEvery;
-        const auto start = timed ? std::chrono::steady_clock::now()
-                                 : std::chrono::steady_clock::time_point{};
+        const bool timed =
+            i0 % kTimedSampleEvery == 0 || i0 / kTimedSampleEvery != i1 / kTimedSampleEvery;
+        const auto start =
+            timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
         counters.tests.timing = timed;
         if (!(cancel_ && cancel_->load(std::memory_order_relaxed)))
             nearest_hits(scene_, camera_rays, m, 0.0f, kInfinity, hits, found, counters.tests);
@@ -289,16 +295,13 @@ void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& 
             ++counters.primary;
             const std::pair<bool, Hit> primary{found[k], hits[k]};
             float distance;
-            out[first + k] = trace_impl<false>(camera_rays[k], 0, 1.0f, counters, distance,
-                                               nullptr, nullptr, &primary);
+            out[first + k] = trace_impl<false>(camera_rays[k], 0, 1.0f, counters, distance, nullptr,
+                                               nullptr, &primary);
             if (rays) rays[first + k] = work_of(counters) - before;
         }
         counters.tests.timing = false;
         if (timed) {
-            counters.timed_ns +=
-                static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                          std::chrono::steady_clock::now() - start)
-                                          .count());
+            counters.timed_ns += nanoseconds_since(start);
         }
     }
 }
@@ -315,10 +318,7 @@ TermSample RayTracer::sample_terms(float px, float py, TraceCounters& counters) 
         trace_impl<false, true>(camera_.ray(px, py), 0, 1.0f, counters, distance, nullptr, &s);
     counters.tests.timing = false;
     if (timed) {
-        counters.timed_ns +=
-            static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                      std::chrono::steady_clock::now() - start)
-                                      .count());
+        counters.timed_ns += nanoseconds_since(start);
     }
     s.tests = static_cast<float>(counters.tests.primitive - tests_before);
     return s;
