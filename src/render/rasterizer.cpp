@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "render/parallel.h"
+#include "render/raster_kernels.h"
 
 namespace luz {
 
@@ -36,10 +37,6 @@ int64_t round_half_away(double x) {
     }
     return i;
 }
-
-/// ⌊a / b⌋ and ⌈a / b⌉ for b > 0.
-int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
-int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }
 
 ClipVertex project(const Camera& cam, bool perspective, const Vec3& p) {
     const Vec3 v = cam.to_view(p);
@@ -192,100 +189,6 @@ void bin_chunk(const Binning& f, size_t begin, size_t end, ChunkBins& bins) {
     fill_tile_lists(f, bins);
 }
 
-/// Rasterizes one triangle into a lattice's fragments (top-left fill rule). kCount: also counts
-/// each point's depth tests into `tests` (the `tests` term, SPEC §1.5).
-template <bool kCount>
-void rasterize_triangle(bool persp, const RasterTriangle& r, const std::array<Vec3, 3>* clip_bary,
-                        const Lattice& lat, Fragment* frags, uint32_t* tests) {
-    int64_t x[3] = {r.x[0], r.x[1], r.x[2]}, y[3] = {r.y[0], r.y[1], r.y[2]};
-    int order[3] = {0, 1, 2};
-    // Edge functions are positive inside for a counter-clockwise triangle on screen (y down).
-    int64_t area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
-    if (area < 0) {
-        std::swap(x[1], x[2]);
-        std::swap(y[1], y[2]);
-        std::swap(order[1], order[2]);
-        area = -area;
-    }
-    const int64_t step = lat.step;
-    // Lattice range of the bounding box.
-    const int64_t min_x = std::min({x[0], x[1], x[2]}), max_x = std::max({x[0], x[1], x[2]});
-    const int64_t min_y = std::min({y[0], y[1], y[2]}), max_y = std::max({y[0], y[1], y[2]});
-    const int px0 = static_cast<int>(std::max<int64_t>(0, ceil_div(min_x - lat.x0, step)));
-    const int px1 = static_cast<int>(std::min<int64_t>(lat.w - 1, floor_div(max_x - lat.x0, step)));
-    const int py0 = static_cast<int>(std::max<int64_t>(0, ceil_div(min_y - lat.y0, step)));
-    const int py1 = static_cast<int>(std::min<int64_t>(lat.h - 1, floor_div(max_y - lat.y0, step)));
-    if (px0 > px1 || py0 > py1) return;
-
-    // Edge k is opposite vertex k: E_k(p) = (b − a) × (p − a) for a = v[k+1], b = v[k+2].
-    int64_t ex[3], ey[3], e0[3], bias[3];
-    const int64_t sx = lat.x0 + px0 * step, sy = lat.y0 + py0 * step;
-    for (int k = 0; k < 3; ++k) {
-        const int a = (k + 1) % 3, b = (k + 2) % 3;
-        const int64_t dx = x[b] - x[a], dy = y[b] - y[a];
-        // Inside: E_k = dx·(py − ya) − dy·(px − xa) ≥ 0 (y down, positive area).
-        ex[k] = -dy * step;  // change per lattice step in x
-        ey[k] = dx * step;   // change per lattice step in y
-        e0[k] = dx * (sy - y[a]) - dy * (sx - x[a]);
-        // Top-left rule: a lattice point exactly on an edge belongs to the triangle only if the
-        // edge is a top edge (horizontal, interior below) or a left edge.
-        const bool top = dy == 0 && dx > 0;
-        const bool left = dy < 0;
-        bias[k] = (top || left) ? 0 : 1;
-        e0[k] -= bias[k];
-    }
-    const float inv_area = 1.0f / static_cast<float>(area);
-    const float d[3] = {r.depth[order[0]], r.depth[order[1]], r.depth[order[2]]};
-    const float iw[3] = {r.inv_w[order[0]], r.inv_w[order[1]], r.inv_w[order[2]]};
-    for (int py = py0; py <= py1; ++py) {
-        int64_t w0 = e0[0], w1 = e0[1], w2 = e0[2];
-        Fragment* row = frags + static_cast<size_t>(py) * lat.w;
-        for (int px = px0; px <= px1; ++px) {
-            if ((w0 | w1 | w2) >= 0) {
-                // Screen-space barycentrics λ (without the top-left bias).
-                const float l1 = static_cast<float>(w1 + bias[1]) * inv_area;
-                const float l2 = static_cast<float>(w2 + bias[2]) * inv_area;
-                const float l0 = 1.0f - l1 - l2;
-                float depth, b[3];
-                if (persp) {
-                    // 1/w is linear on screen: perspective-correct interpolation.
-                    const float q0 = l0 * iw[0], q1 = l1 * iw[1], q2 = l2 * iw[2];
-                    const float inv = 1.0f / (q0 + q1 + q2);
-                    b[0] = q0 * inv;
-                    b[1] = q1 * inv;
-                    b[2] = q2 * inv;
-                    depth = b[0] * d[0] + b[1] * d[1] + b[2] * d[2];
-                } else {
-                    b[0] = l0;
-                    b[1] = l1;
-                    b[2] = l2;
-                    depth = l0 * d[0] + l1 * d[1] + l2 * d[2];
-                }
-                Fragment& frag = row[px];
-                if constexpr (kCount) ++tests[static_cast<size_t>(py) * lat.w + px];
-                if (depth < frag.depth) {
-                    // Barycentrics of the set-up vertices → of the original triangle.
-                    float o[3] = {0, 0, 0};
-                    for (int k = 0; k < 3; ++k) o[order[k]] = b[k];
-                    if (clip_bary) {
-                        const auto& cb = *clip_bary;
-                        const Vec3 ob = cb[0] * o[0] + cb[1] * o[1] + cb[2] * o[2];
-                        o[1] = ob.y;
-                        o[2] = ob.z;
-                    }
-                    frag = {depth, r.triangle, o[1], o[2]};
-                }
-            }
-            w0 += ex[0];
-            w1 += ex[1];
-            w2 += ex[2];
-        }
-        e0[0] += ey[0];
-        e0[1] += ey[1];
-        e0[2] += ey[2];
-    }
-}
-
 constexpr Fragment kEmptyFragment{std::numeric_limits<float>::infinity(), kNoTriangle, 0, 0};
 
 }  // namespace
@@ -344,9 +247,9 @@ void Rasterizer::rasterize(size_t t, const Lattice& lat, Fragment* frags, uint32
             const RasterTriangle& r = c.triangles[index];
             const std::array<Vec3, 3>* clip_bary = r.clip >= 0 ? &c.clip_bary[r.clip] : nullptr;
             if (tests) {
-                rasterize_triangle<true>(perspective_, r, clip_bary, lat, frags, tests);
+                rasterize_triangle_reference(perspective_, r, clip_bary, lat, frags, tests);
             } else {
-                rasterize_triangle<false>(perspective_, r, clip_bary, lat, frags, nullptr);
+                rasterize_triangle_lanes(perspective_, r, clip_bary, lat, frags);
             }
         }
     }
