@@ -1,0 +1,88 @@
+// Eight-lane float and mask types for code that runs eight of something side by side (ray
+// packets, the rasterizer's rows, shading eight points): GCC vector extensions, AVX where the
+// build has it, two SSE2 halves otherwise; every operation is the IEEE one of the scalar code,
+// lane by lane.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+namespace luz {
+
+inline constexpr int kPacketLanes = 8;
+
+/// Eight floats, eight 32-bit masks (all bits set where true), lane by lane.
+typedef float Lane8f __attribute__((vector_size(32)));
+typedef int32_t Lane8i __attribute__((vector_size(32)));
+
+/// x in every lane (its bits: a −0 stays −0).
+inline Lane8f lanes(float x) { return Lane8f{x, x, x, x, x, x, x, x}; }
+inline Lane8f load_lanes(const float* p) {
+    Lane8f v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+/// Bit k set where lane k of `m` is true.
+inline unsigned lane_bits(Lane8i m) {
+#if defined(__AVX__)
+    return static_cast<unsigned>(_mm256_movemask_ps((__m256)m));
+#elif defined(__SSE2__)
+    __m128 lo, hi;
+    std::memcpy(&lo, &m, sizeof lo);
+    std::memcpy(&hi, reinterpret_cast<const char*>(&m) + sizeof lo, sizeof hi);
+    return static_cast<unsigned>(_mm_movemask_ps(lo) | (_mm_movemask_ps(hi) << 4));
+#else
+    unsigned bits = 0;
+    for (int k = 0; k < kPacketLanes; ++k) bits |= (m[k] != 0 ? 1u : 0u) << k;
+    return bits;
+#endif
+}
+/// The lanes of `mask` as a mask vector.
+inline Lane8i lane_mask(unsigned mask) {
+    Lane8i m;
+    for (int k = 0; k < kPacketLanes; ++k) m[k] = (mask >> k) & 1u ? -1 : 0;
+    return m;
+}
+
+/// √x lane by lane (IEEE, as std::sqrt).
+inline Lane8f lane_sqrt(Lane8f x) {
+#if defined(__AVX__)
+    return (Lane8f)_mm256_sqrt_ps((__m256)x);
+#else
+    for (int k = 0; k < kPacketLanes; ++k) x[k] = __builtin_sqrtf(x[k]);
+    return x;
+#endif
+}
+/// mask ? a : b lane by lane (`mask` all bits set or clear in each lane).
+inline Lane8f lane_select(Lane8i mask, Lane8f a, Lane8f b) {
+    return (Lane8f)(((Lane8i)a & mask) | ((Lane8i)b & ~mask));
+}
+/// base[index[k]] in lane k.
+inline Lane8f gather_lanes(const float* base, Lane8i index) {
+#if defined(__AVX2__)
+    return (Lane8f)_mm256_i32gather_ps(base, (__m256i)index, 4);
+#else
+    Lane8f v;
+    for (int k = 0; k < kPacketLanes; ++k) v[k] = base[index[k]];
+    return v;
+#endif
+}
+inline Lane8i gather_lanes(const int32_t* base, Lane8i index) {
+#if defined(__AVX2__)
+    return (Lane8i)_mm256_i32gather_epi32(base, (__m256i)index, 4);
+#else
+    Lane8i v;
+    for (int k = 0; k < kPacketLanes; ++k) v[k] = base[index[k]];
+    return v;
+#endif
+}
+/// The same for unsigned values (below 2^31).
+inline Lane8i gather_lanes(const uint32_t* base, Lane8i index) {
+    return gather_lanes(reinterpret_cast<const int32_t*>(base), index);
+}
+
+}  // namespace luz

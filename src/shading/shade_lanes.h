@@ -1,0 +1,96 @@
+// shade_lanes(): shade() at eight surface points side by side, for the case the zbuffer meets
+// most: every light seen (no shadow rays), no terms asked for, and materials without a checker
+// whose specular reflectance is the constant Ks. Each lane computes what shade() computes, with
+// the same operations in the same order, so that every lane's colour has shade()'s bits
+// (tests/shading/shade_lanes_test.cpp); only cosα^n is taken lane by lane (phong_power()).
+#pragma once
+
+#include "math/lane8.h"
+#include "shading/shade.h"
+
+namespace luz {
+
+/// Eight surface points (one per lane) and their materials' constants, by component.
+struct ShadingLanes {
+    Lane8f P[3];  ///< world position
+    Lane8f N[3];  ///< unit shading normal (flipped towards the viewer by shade_lanes())
+    Lane8f S[3];  ///< unit vector from P towards the viewer
+    Lane8f ka[3], kd[3], ks[3], n;
+};
+
+/// Whether shade_lanes() shades material m as shade() does: no checker, constant reflectance.
+inline bool shades_in_lanes(const Material& m) {
+    return !m.checker && m.reflectance == Reflectance::constant;
+}
+
+namespace lanes_detail {
+inline Lane8f dot(const Lane8f a[3], const Lane8f b[3]) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+}  // namespace lanes_detail
+
+/// shade(p_k, lighting, AllVisible{}) in lane k of I, for the lanes of `active` (bit k: lane k).
+inline void shade_lanes(const ShadingLanes& p, const Lighting& lighting, unsigned active,
+                        Lane8f I[3]) {
+    using lanes_detail::dot;
+    const Lane8f zero = lanes(0.0f), one = lanes(1.0f);
+
+    // Two-sided normals (SPEC §1.3): N faces the viewer.
+    const Lane8i flipped = dot(p.N, p.S) < zero;
+    Lane8f N[3];
+    for (int a = 0; a < 3; ++a) N[a] = lane_select(flipped, -p.N[a], p.N[a]);
+
+    const float Ia[3] = {lighting.Ia.x, lighting.Ia.y, lighting.Ia.z};
+    for (int a = 0; a < 3; ++a) I[a] = Ia[a] * p.ka[a];  // Ia·Ka
+    // max_component(Ks) > 0: the specular term needs a power
+    const Lane8f ks_max =
+        lane_select(p.ks[0] > p.ks[1], lane_select(p.ks[0] > p.ks[2], p.ks[0], p.ks[2]),
+                    lane_select(p.ks[1] > p.ks[2], p.ks[1], p.ks[2]));
+    const Lane8i has_specular = ks_max > zero;
+
+    for (const Light& light : lighting.lights) {
+        const float Lp[3] = {light.position.x, light.position.y, light.position.z};
+        const float Il[3] = {light.intensity.x, light.intensity.y, light.intensity.z};
+        Lane8f to_light[3];
+        for (int a = 0; a < 3; ++a) to_light[a] = Lp[a] - p.P[a];
+        const Lane8f d = lane_sqrt(dot(to_light, to_light));
+        const Lane8f inv_d = one / d;
+        Lane8f L[3];
+        for (int a = 0; a < 3; ++a) L[a] = to_light[a] * inv_d;
+        const Lane8f N_dot_L = dot(N, L);
+        const Lane8i lit = N_dot_L > zero;
+        if (!(lane_bits(lit) & active)) continue;
+        const Lane8f cos_theta = N_dot_L;  // cosθ_j = max(0, N·L_j) where lit
+        Lane8f diffuse[3], specular[3] = {zero, zero, zero};
+        if (lighting.model == Model::lambert) {
+            // I += vis_j·Il_j·Kd·cosθ_j (vis_j = 1)
+            for (int a = 0; a < 3; ++a) diffuse[a] = (Il[a] * p.kd[a]) * cos_theta;
+        } else {
+            // I += vis_j·Il_j/(d_j+K)·(Kd·cosθ_j + Ks·cosα_j^n)
+            Lane8f R[3];  // mirror direction of L_j
+            const Lane8f two_N_dot_L = 2.0f * N_dot_L;
+            for (int a = 0; a < 3; ++a) R[a] = N[a] * two_N_dot_L - L[a];
+            const Lane8f R_dot_S = dot(R, p.S);
+            const Lane8f cos_alpha = lane_select(R_dot_S > zero, R_dot_S, zero);
+            const Lane8f att = one / (d + lighting.K);
+            Lane8f Il_att[3];
+            for (int a = 0; a < 3; ++a) {
+                Il_att[a] = Il[a] * att;
+                diffuse[a] = (Il_att[a] * p.kd[a]) * cos_theta;
+            }
+            // cosα^n lane by lane, where the light is in front and Ks > 0 (else no power)
+            Lane8f power = zero;
+            for (unsigned m = lane_bits(lit & has_specular) & active; m; m &= m - 1) {
+                const int k = __builtin_ctz(m);
+                power[k] = phong_power(cos_alpha[k], p.n[k]);
+            }
+            const Lane8i specular_lanes = lit & has_specular;
+            for (int a = 0; a < 3; ++a)
+                specular[a] = lane_select(specular_lanes, (Il_att[a] * p.ks[a]) * power, zero);
+        }
+        for (int a = 0; a < 3; ++a)
+            I[a] = lane_select(lit, I[a] + (diffuse[a] + specular[a]), I[a]);
+    }
+}
+
+}  // namespace luz
