@@ -26,6 +26,7 @@ inline Lane8f load_lanes(const float* p) {
     std::memcpy(&v, p, sizeof v);
     return v;
 }
+inline void store_lanes(float* p, Lane8f v) { std::memcpy(p, &v, sizeof v); }
 /// Bit k set where lane k of `m` is true.
 inline unsigned lane_bits(Lane8i m) {
 #if defined(__AVX__)

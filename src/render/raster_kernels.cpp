@@ -86,20 +86,6 @@ inline void original_bary(const EdgeSetup& s, const std::array<Vec3, 3>* clip_ba
     }
 }
 
-/// The depths held by fragments f[0 … n−1] in lanes 0 … n−1 (lanes ≥ n repeat f[n−1]).
-inline Lane8f held_depths(const Fragment* f, int n) {
-    static_assert(sizeof(Fragment) == 4 * sizeof(float));
-#if defined(__AVX2__)
-    const __m256i offsets = _mm256_min_epi32(_mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28),
-                                             _mm256_set1_epi32(4 * (n - 1)));
-    return (Lane8f)_mm256_i32gather_ps(&f->depth, offsets, 4);
-#else
-    Lane8f v;
-    for (int k = 0; k < kPacketLanes; ++k) v[k] = f[std::min(k, n - 1)].depth;
-    return v;
-#endif
-}
-
 }  // namespace
 
 void rasterize_triangle_reference(bool persp, const RasterTriangle& r,
@@ -152,7 +138,7 @@ void rasterize_triangle_reference(bool persp, const RasterTriangle& r,
 
 void rasterize_triangle_lanes(bool persp, const RasterTriangle& r,
                               const std::array<Vec3, 3>* clip_bary, const Lattice& lat,
-                              Fragment* frags) {
+                              Fragment* frags, float* depths) {
     const EdgeSetup s = set_up(r, lat);
     if (s.empty) return;
     // |E_k| ≤ |dx|·|py − ya| + |dy|·|px − xa| over the box grown by 8 steps (the lanes past its
@@ -161,6 +147,10 @@ void rasterize_triangle_lanes(bool persp, const RasterTriangle& r,
     const int64_t grow = 8 * lat.step;
     if ((s.extent_x + grow) * (s.extent_y + grow) >= kLimit) {
         rasterize_triangle_reference(persp, r, clip_bary, lat, frags, nullptr);
+        for (int py = s.py0; py <= s.py1; ++py) {  // the depth plane follows
+            const size_t row = static_cast<size_t>(py) * lat.w;
+            for (int px = s.px0; px <= s.px1; ++px) depths[row + px] = frags[row + px].depth;
+        }
         return;
     }
     const Lane8i index = {0, 1, 2, 3, 4, 5, 6, 7};
@@ -175,15 +165,44 @@ void rasterize_triangle_lanes(bool persp, const RasterTriangle& r,
     const int32_t bias1 = static_cast<int32_t>(s.bias[1]), bias2 = static_cast<int32_t>(s.bias[2]);
     const Lane8f inv_area = lanes(1.0f / static_cast<float>(s.area));
     const Lane8f one = lanes(1.0f);
+    // Each row's span (boxes wider than the lanes): E_k ≥ 0 bounds the step j from the box's left
+    // side below (ex_k > 0) or above (ex_k < 0) by −E_k/ex_k, linear in the row: j_k = A_k +
+    // B_k·(py − py0), in double and widened by one step each side; the edge test still decides each
+    // point exactly.
+    double A[3], B[3];
+    for (int k = 0; k < 3; ++k) {
+        A[k] = s.ex[k] != 0 ? -static_cast<double>(s.e0[k]) / static_cast<double>(s.ex[k]) : 0;
+        B[k] = s.ex[k] != 0 ? -static_cast<double>(s.ey[k]) / static_cast<double>(s.ex[k]) : 0;
+    }
+    const int last = s.px1 - s.px0;           // the box's last step
+    const bool spans = last >= kPacketLanes;  // else a row is one group of lanes anyway
     for (int py = s.py0; py <= s.py1; ++py) {
+        const double dy = py - s.py0;
+        double lo = 0, hi = last;
+        bool empty = false;
+        for (int k = 0; k < 3 && spans; ++k) {
+            if (s.ex[k] > 0) lo = std::max(lo, A[k] + B[k] * dy);
+            if (s.ex[k] < 0) hi = std::min(hi, A[k] + B[k] * dy);
+            if (s.ex[k] == 0) empty |= row_e[k] < 0;  // the edge's sign is the row's
+        }
+        const int first = std::max(0, static_cast<int>(std::floor(lo)) - 1);
+        const int end = std::min(last, static_cast<int>(std::ceil(std::max(hi, -1.0))) + 1);
+        if (empty || first > end) {
+            for (int k = 0; k < 3; ++k) row_e[k] += ey[k];
+            continue;
+        }
+        const int px_end = s.px0 + end;
         Fragment* row = frags + static_cast<size_t>(py) * lat.w;
-        int32_t w0 = row_e[0], w1 = row_e[1], w2 = row_e[2];
-        for (int px = s.px0; px <= s.px1; px += 8) {
+        float* row_depths = depths + static_cast<size_t>(py) * lat.w;
+        int32_t w0 = row_e[0] + static_cast<int32_t>(s.ex[0]) * first;
+        int32_t w1 = row_e[1] + static_cast<int32_t>(s.ex[1]) * first;
+        int32_t w2 = row_e[2] + static_cast<int32_t>(s.ex[2]) * first;
+        for (int px = s.px0 + first; px <= px_end; px += 8) {
             const Lane8i W0 = w0 + lane_ex[0], W1 = w1 + lane_ex[1], W2 = w2 + lane_ex[2];
             w0 += ex8[0];
             w1 += ex8[1];
             w2 += ex8[2];
-            const int n = std::min(8, s.px1 - px + 1);  // lanes within the box
+            const int n = std::min(8, px_end - px + 1);  // lanes within the span
             const Lane8i inside = ((W0 | W1 | W2) >= 0) & (index < n);
             const unsigned in = lane_bits(inside);
             if (!in) continue;
@@ -205,8 +224,11 @@ void rasterize_triangle_lanes(bool persp, const RasterTriangle& r,
             }
             depth = b0 * s.d[0] + b1 * s.d[1] + b2 * s.d[2];
             Fragment* f = row + px;
-            const Lane8f held = held_depths(f, n);
-            unsigned pass = in & lane_bits(depth < held);
+            const Lane8f held = load_lanes(row_depths + px);  // lanes ≥ n: padding or next row
+            const Lane8i nearer = (depth < held) & inside;
+            unsigned pass = lane_bits(nearer);
+            if (!pass) continue;
+            store_lanes(row_depths + px, lane_select(nearer, depth, held));
             while (pass) {
                 const int k = __builtin_ctz(pass);
                 pass &= pass - 1;

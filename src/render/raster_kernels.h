@@ -25,8 +25,10 @@ void rasterize_triangle_reference(bool perspective, const RasterTriangle& r,
 
 /// The same fragments as rasterize_triangle_reference() without `tests`, eight points of a row
 /// at a time with 32-bit edge functions; triangles too large for 32 bits go to the reference.
+/// `depths` holds frags[i].depth at i, and is kept so: lat.w·lat.h floats and 8 more (read and
+/// written back unchanged past a row's end).
 void rasterize_triangle_lanes(bool perspective, const RasterTriangle& r,
                               const std::array<Vec3, 3>* clip_bary, const Lattice& lat,
-                              Fragment* frags);
+                              Fragment* frags, float* depths);
 
 }  // namespace luz

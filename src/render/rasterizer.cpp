@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "math/lane8.h"
 #include "render/parallel.h"
 #include "render/raster_kernels.h"
 
@@ -239,6 +240,9 @@ void Rasterizer::rasterize(size_t t, const Lattice& lat, Fragment* frags, uint32
     const size_t points = static_cast<size_t>(lat.w) * lat.h;
     std::fill(frags, frags + points, kEmptyFragment);
     if (tests) std::fill(tests, tests + points, 0u);
+    // The lanes kernel's copy of the fragments' depths (and its 8 floats of padding).
+    thread_local std::vector<float> depths;
+    if (!tests) depths.assign(points + kPacketLanes, std::numeric_limits<float>::infinity());
     // Chunks in order, so that ties resolve the same way always.
     for (size_t k = 0; k < chunk_count_; ++k) {
         const ChunkBins& c = buffers_.chunks[k];
@@ -249,7 +253,7 @@ void Rasterizer::rasterize(size_t t, const Lattice& lat, Fragment* frags, uint32
             if (tests) {
                 rasterize_triangle_reference(perspective_, r, clip_bary, lat, frags, tests);
             } else {
-                rasterize_triangle_lanes(perspective_, r, clip_bary, lat, frags);
+                rasterize_triangle_lanes(perspective_, r, clip_bary, lat, frags, depths.data());
             }
         }
     }

@@ -111,20 +111,28 @@ inline void shade_fragments_lanes(const ZbufferFrame& f, const Lighting& lightin
     } else {
         for (int k = 0; k < kPacketLanes; ++k) constants(k, f.settings.materials[material[k]]);
     }
-    // P and N interpolated from the triangle's vertices, as fragment_point() does.
-    const Lane8i first = triangle * 3;
-    const Lane8i v[3] = {gather_lanes(mesh.indices.data(), first) * 3,
-                         gather_lanes(mesh.indices.data(), first + 1) * 3,
-                         gather_lanes(mesh.indices.data(), first + 2) * 3};
-    const float* positions = &mesh.positions.data()->x;
-    const float* normals = &mesh.normals.data()->x;
+    // P and N interpolated from the triangle's vertices, as fragment_point() does; the
+    // vertices are read once per distinct triangle of the eight (neighbours share them).
+    Lane8f vp[3][3] = {}, vn[3][3] = {};  // [vertex][component]
+    for (unsigned todo = 0xFFu; todo;) {
+        const int32_t t = triangle[__builtin_ctz(todo)];
+        const Lane8i same = triangle == t;
+        todo &= ~lane_bits(same);
+        const uint32_t* idx = &mesh.indices[3 * static_cast<size_t>(t)];
+        for (int i = 0; i < 3; ++i) {
+            const float* q = &mesh.positions[idx[i]].x;
+            const float* m = &mesh.normals[idx[i]].x;
+            for (int a = 0; a < 3; ++a) {
+                vp[i][a] = lane_select(same, lanes(q[a]), vp[i][a]);
+                vn[i][a] = lane_select(same, lanes(m[a]), vn[i][a]);
+            }
+        }
+    }
     const Lane8f b0 = lanes(1.0f) - b1 - b2;
     Lane8f N[3];
     for (int a = 0; a < 3; ++a) {
-        p.P[a] = gather_lanes(positions, v[0] + a) * b0 + gather_lanes(positions, v[1] + a) * b1 +
-                 gather_lanes(positions, v[2] + a) * b2;
-        N[a] = gather_lanes(normals, v[0] + a) * b0 + gather_lanes(normals, v[1] + a) * b1 +
-               gather_lanes(normals, v[2] + a) * b2;
+        p.P[a] = vp[0][a] * b0 + vp[1][a] * b1 + vp[2][a] * b2;
+        N[a] = vn[0][a] * b0 + vn[1][a] * b1 + vn[2][a] * b2;
     }
     const Lane8f inv_length = lanes(1.0f) / lane_sqrt(N[0] * N[0] + N[1] * N[1] + N[2] * N[2]);
     for (int a = 0; a < 3; ++a) p.N[a] = N[a] * inv_length;

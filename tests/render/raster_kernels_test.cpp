@@ -55,17 +55,21 @@ void expect_same_fragments(const Case& c, double max_pixels, bool perspective, u
     const size_t points = static_cast<size_t>(c.lat.w) * c.lat.h;
     std::vector<Fragment> reference(points, kEmpty), lanes(points, kEmpty);
     std::vector<uint32_t> tests(points, 0);
+    std::vector<float> depths(points + 8, std::numeric_limits<float>::infinity());
     for (const RasterTriangle& r : tris) {
         const auto* cb = r.clip >= 0 ? &clip_bary : nullptr;
         rasterize_triangle_reference(perspective, r, cb, c.lat, reference.data(), tests.data());
-        rasterize_triangle_lanes(perspective, r, cb, c.lat, lanes.data());
+        rasterize_triangle_lanes(perspective, r, cb, c.lat, lanes.data(), depths.data());
     }
     size_t covered = 0, differ = 0;
     for (size_t i = 0; i < points; ++i) {
         covered += reference[i].triangle != kNoTriangle;
         differ += std::memcmp(&reference[i], &lanes[i], sizeof(Fragment)) != 0;
+        differ += std::memcmp(&depths[i], &lanes[i].depth, sizeof(float)) != 0;
     }
     EXPECT_EQ(differ, 0u) << "of " << points << " points";
+    for (size_t i = points; i < depths.size(); ++i)  // the padding is left as it was
+        EXPECT_EQ(depths[i], std::numeric_limits<float>::infinity());
     EXPECT_GT(covered, points / 4);  // the comparison is of something
 }
 
