@@ -62,6 +62,7 @@ inline Lane8f lane_sqrt(Lane8f x) {
 inline Lane8f lane_select(Lane8i mask, Lane8f a, Lane8f b) {
     return (Lane8f)(((Lane8i)a & mask) | ((Lane8i)b & ~mask));
 }
+inline Lane8i lane_select(Lane8i mask, Lane8i a, Lane8i b) { return (a & mask) | (b & ~mask); }
 /// base[index[k]] in lane k.
 inline Lane8f gather_lanes(const float* base, Lane8i index) {
 #if defined(__AVX2__)

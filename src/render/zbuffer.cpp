@@ -22,30 +22,18 @@ namespace luz {
 
 namespace {
 
-/// Shades a tile's fragments into the image: the background and light spheres directly, the
-/// rest of each row eight at a time (shade_fragments_lanes()), or one at a time where the
-/// material needs shade() itself.
+/// Shades a tile's fragments into the image, eight at a time along each row
+/// (shade_fragments_lanes()), the last few of a row one at a time.
 void shade_tile(const ZbufferFrame& f, int x0, int y0, int w, int h, const Fragment* frags,
                 const uint32_t*, Image& out, RenderStats& stats) {
     const Lighting lighting = lighting_of(f.settings);
-    const Rgb background = f.settings.image.background;
-    int at[kRasterTile] = {};  // the row's fragments for the lanes (all eight of a group readable)
     for (int j = 0; j < h; ++j) {
         Rgb* row = &out.at(x0, y0 + j);
         const Fragment* frag = frags + static_cast<size_t>(j) * w;
-        int n = 0;
-        for (int i = 0; i < w; ++i) {
-            if (n < kRasterTile && lane_material(f, frag[i]) >= 0) {
-                at[n++] = i;
-            } else {
-                row[i] = frag[i].triangle == kNoTriangle
-                             ? background
-                             : shade_fragment(f, lighting, frag[i], stats);
-            }
-        }
-        for (int s = 0; s < n; s += kPacketLanes)
-            shade_fragments_lanes(f, lighting, frag, at + s, std::min(kPacketLanes, n - s), row,
-                                  stats);
+        int i = 0;
+        for (; i + kPacketLanes <= w; i += kPacketLanes)
+            shade_fragments_lanes(f, lighting, frag + i, row + i, stats);
+        for (; i < w; ++i) row[i] = shade_fragment(f, lighting, frag[i], stats);
     }
 }
 

@@ -2,8 +2,10 @@
 // which turns one rasterized fragment into a colour (SPEC §1.1).
 #pragma once
 
+#include <cstddef>
 #include <cstring>
 #include <type_traits>
+#include <vector>
 
 #include "geometry/scene.h"
 #include "math/lane8.h"
@@ -63,92 +65,139 @@ inline Lighting lighting_of(const Settings& desc) {
     return shade(fragment_point(f, frag, material), lighting, AllVisible{});
 }
 
-/// Whether shade_fragments_lanes() may shade fragment `frag` (not the background, not a light
-/// sphere, a material shade_lanes() handles): its material index, else −1.
-[[gnu::always_inline]] inline int32_t lane_material(const ZbufferFrame& f, const Fragment& frag) {
-    if (frag.triangle == kNoTriangle) return -1;
-    const int32_t material = f.geometry.triangle_material[frag.triangle];
-    return material >= 0 && shades_in_lanes(f.settings.materials[material]) ? material : -1;
+namespace zbuffer_detail {
+
+/// The fields of eight consecutive fragments f[0 … 7], lane k holding f[k]'s.
+inline void load_fragments(const Fragment* f, Lane8f& depth, Lane8i& triangle, Lane8f& b1,
+                           Lane8f& b2) {
+    static_assert(sizeof(Fragment) == 4 * sizeof(float) && offsetof(Fragment, triangle) == 4 &&
+                  offsetof(Fragment, b1) == 8 && offsetof(Fragment, b2) == 12);
+    Lane8f v[4];  // fragments (0 1), (2 3), (4 5), (6 7)
+    std::memcpy(v, f, sizeof v);
+    // (depth triangle) and (b1 b2) of fragments 0 … 3, then 4 … 7
+    const Lane8f dt_lo = __builtin_shufflevector(v[0], v[1], 0, 4, 8, 12, 1, 5, 9, 13);
+    const Lane8f dt_hi = __builtin_shufflevector(v[2], v[3], 0, 4, 8, 12, 1, 5, 9, 13);
+    const Lane8f bb_lo = __builtin_shufflevector(v[0], v[1], 2, 6, 10, 14, 3, 7, 11, 15);
+    const Lane8f bb_hi = __builtin_shufflevector(v[2], v[3], 2, 6, 10, 14, 3, 7, 11, 15);
+    depth = __builtin_shufflevector(dt_lo, dt_hi, 0, 1, 2, 3, 8, 9, 10, 11);
+    triangle = (Lane8i)__builtin_shufflevector(dt_lo, dt_hi, 4, 5, 6, 7, 12, 13, 14, 15);
+    b1 = __builtin_shufflevector(bb_lo, bb_hi, 0, 1, 2, 3, 8, 9, 10, 11);
+    b2 = __builtin_shufflevector(bb_lo, bb_hi, 4, 5, 6, 7, 12, 13, 14, 15);
 }
 
-/// shade_fragment() of frags[at[k]] into out[at[k]] for k < n ≤ 8 (at[0 … 7] readable), eight
-/// at a time: each
-/// fragment's point built as fragment_point() builds it, then shade_lanes(). Every fragment
-/// must have a lane_material() ≥ 0. The colours have shade_fragment()'s bits.
+/// out[k] = (r[k], g[k], b[k]) for the eight lanes k: three 32-byte stores.
+inline void store_colours(Rgb* out, Lane8f r, Lane8f g, Lane8f b) {
+    static_assert(sizeof(Rgb) == 3 * sizeof(float));
+    const Lane8f rg_lo = __builtin_shufflevector(r, g, 0, 8, 1, 9, 2, 10, 3, 11);
+    const Lane8f rg_hi = __builtin_shufflevector(r, g, 4, 12, 5, 13, 6, 14, 7, 15);
+    const Lane8f rg_mid = __builtin_shufflevector(rg_lo, rg_hi, 6, 7, 8, 9, 10, 11, 12, 13);
+    const Lane8f v[3] = {__builtin_shufflevector(rg_lo, b, 0, 1, 8, 2, 3, 9, 4, 5),
+                         __builtin_shufflevector(rg_mid, b, 10, 0, 1, 11, 2, 3, 12, 4),
+                         __builtin_shufflevector(rg_hi, b, 3, 13, 4, 5, 14, 6, 7, 15)};
+    std::memcpy(out, v, sizeof v);
+}
+
+}  // namespace zbuffer_detail
+
+/// shade_fragment() of eight consecutive fragments frags[0 … 7] into out[0 … 7], the objects'
+/// fragments whose material shade_lanes() handles side by side: each point built as
+/// fragment_point() builds it, then shade_lanes(). The rest (background, light spheres, other
+/// materials) as shade_fragment() gives them. Every colour has shade_fragment()'s bits.
 inline void shade_fragments_lanes(const ZbufferFrame& f, const Lighting& lighting,
-                                  const Fragment* frags, const int* at, int n, Rgb* out,
-                                  RenderStats& stats) {
-    static_assert(sizeof(Vec3) == 3 * sizeof(float));
-    const TriangleMesh& mesh = f.geometry.mesh;
-    ShadingLanes p;
-    // The fragments' triangles and barycentrics (lanes ≥ n repeat lane 0).
-    static_assert(sizeof(Fragment) == 4 * sizeof(float));
-    const Lane8i index = {0, 1, 2, 3, 4, 5, 6, 7};
-    Lane8i fragment;  // at[k] … as offsets in floats
-    std::memcpy(&fragment, at, sizeof fragment);
-    fragment = (index < n ? fragment : at[0]) * 4;
-    const float* fields = &frags->depth;
-    const Lane8i triangle = (Lane8i)gather_lanes(fields + 1, fragment);
-    const Lane8f b1 = gather_lanes(fields + 2, fragment), b2 = gather_lanes(fields + 3, fragment);
-    // Their materials' constants: broadcast when all lanes share one (the usual case).
-    const Lane8i material = gather_lanes(f.geometry.triangle_material.data(), triangle);
-    const auto constants = [&](int k, const Material& m) {
-        for (int a = 0; a < 3; ++a) {
-            p.ka[a][k] = m.ka[a];
-            p.kd[a][k] = m.kd[a];
-            p.ks[a][k] = m.ks[a];
-        }
-        p.n[k] = m.n;
-    };
-    if (lane_bits(material == material[0]) == 0xFFu) {
-        const Material& m = f.settings.materials[material[0]];
-        for (int a = 0; a < 3; ++a) {
-            p.ka[a] = lanes(m.ka[a]);
-            p.kd[a] = lanes(m.kd[a]);
-            p.ks[a] = lanes(m.ks[a]);
-        }
-        p.n = lanes(m.n);
-    } else {
-        for (int k = 0; k < kPacketLanes; ++k) constants(k, f.settings.materials[material[k]]);
+                                  const Fragment* frags, Rgb* out, RenderStats& stats) {
+    using namespace zbuffer_detail;
+    const Rgb& background = f.settings.image.background;
+    Lane8f depth, b1, b2;
+    Lane8i triangle;
+    load_fragments(frags, depth, triangle, b1, b2);
+    const unsigned covered = lane_bits(triangle != static_cast<int32_t>(kNoTriangle));
+    if (!covered) {
+        for (int k = 0; k < kPacketLanes; ++k) out[k] = background;
+        return;
     }
-    // P and N interpolated from the triangle's vertices, as fragment_point() does; the
-    // vertices are read once per distinct triangle of the eight (neighbours share them).
-    Lane8f vp[3][3] = {}, vn[3][3] = {};  // [vertex][component]
-    for (unsigned todo = 0xFFu; todo;) {
-        const int32_t t = triangle[__builtin_ctz(todo)];
-        const Lane8i same = triangle == t;
-        todo &= ~lane_bits(same);
-        const uint32_t* idx = &mesh.indices[3 * static_cast<size_t>(t)];
-        for (int i = 0; i < 3; ++i) {
-            const float* q = &mesh.positions[idx[i]].x;
-            const float* m = &mesh.normals[idx[i]].x;
+    // The lanes shaded side by side: their materials' constants, broadcast when they share one.
+    const int32_t first = triangle[__builtin_ctz(covered)];
+    triangle = lane_select(lane_mask(covered), triangle, Lane8i{} + first);  // uncovered: first's
+    const TriangleMesh& mesh = f.geometry.mesh;
+    const Lane8i material = gather_lanes(f.geometry.triangle_material.data(), triangle);
+    const std::vector<Material>& materials = f.settings.materials;
+    ShadingLanes p;
+    unsigned active = 0;
+    if (lane_bits(material == material[0]) == 0xFFu) {
+        const int32_t m = material[0];
+        if (m >= 0 && shades_in_lanes(materials[m])) {
+            active = covered;
             for (int a = 0; a < 3; ++a) {
-                vp[i][a] = lane_select(same, lanes(q[a]), vp[i][a]);
-                vn[i][a] = lane_select(same, lanes(m[a]), vn[i][a]);
+                p.ka[a] = lanes(materials[m].ka[a]);
+                p.kd[a] = lanes(materials[m].kd[a]);
+                p.ks[a] = lanes(materials[m].ks[a]);
+            }
+            p.n = lanes(materials[m].n);
+        }
+    } else {
+        for (int a = 0; a < 3; ++a) p.ka[a] = p.kd[a] = p.ks[a] = lanes(0.0f);
+        p.n = lanes(1.0f);
+        for (unsigned c = covered; c; c &= c - 1) {
+            const int k = __builtin_ctz(c);
+            const int32_t m = material[k];
+            if (m < 0 || !shades_in_lanes(materials[m])) continue;
+            active |= 1u << k;
+            for (int a = 0; a < 3; ++a) {
+                p.ka[a][k] = materials[m].ka[a];
+                p.kd[a][k] = materials[m].kd[a];
+                p.ks[a][k] = materials[m].ks[a];
+            }
+            p.n[k] = materials[m].n;
+        }
+    }
+    Lane8f I[3] = {lanes(background.x), lanes(background.y), lanes(background.z)};
+    if (active) {
+        // P and N interpolated from the triangle's vertices, as fragment_point() does; the
+        // vertices are read once per distinct triangle of the eight (neighbours share them).
+        Lane8f vp[3][3] = {}, vn[3][3] = {};  // [vertex][component]
+        for (unsigned todo = active; todo;) {
+            const int32_t t = triangle[__builtin_ctz(todo)];
+            const Lane8i same = triangle == t;
+            todo &= ~lane_bits(same);
+            const uint32_t* idx = &mesh.indices[3 * static_cast<size_t>(t)];
+            for (int i = 0; i < 3; ++i) {
+                const float* q = &mesh.positions[idx[i]].x;
+                const float* n = &mesh.normals[idx[i]].x;
+                for (int a = 0; a < 3; ++a) {
+                    vp[i][a] = lane_select(same, lanes(q[a]), vp[i][a]);
+                    vn[i][a] = lane_select(same, lanes(n[a]), vn[i][a]);
+                }
             }
         }
+        const Lane8f b0 = lanes(1.0f) - b1 - b2;
+        Lane8f N[3];
+        for (int a = 0; a < 3; ++a) {
+            p.P[a] = vp[0][a] * b0 + vp[1][a] * b1 + vp[2][a] * b2;
+            N[a] = vn[0][a] * b0 + vn[1][a] * b1 + vn[2][a] * b2;
+        }
+        const Lane8f inv_length = lanes(1.0f) / lane_sqrt(N[0] * N[0] + N[1] * N[1] + N[2] * N[2]);
+        for (int a = 0; a < 3; ++a) p.N[a] = N[a] * inv_length;
+        if (f.perspective) {  // S = normalize(eye − P)
+            Lane8f to_eye[3];
+            for (int a = 0; a < 3; ++a) to_eye[a] = f.camera.position[a] - p.P[a];
+            const Lane8f inv =
+                lanes(1.0f) /
+                lane_sqrt(to_eye[0] * to_eye[0] + to_eye[1] * to_eye[1] + to_eye[2] * to_eye[2]);
+            for (int a = 0; a < 3; ++a) p.S[a] = to_eye[a] * inv;
+        } else {
+            for (int a = 0; a < 3; ++a) p.S[a] = lanes(f.camera.w[a]);
+        }
+        Lane8f shaded[3];
+        shade_lanes(p, lighting, active, shaded);
+        const Lane8i mask = lane_mask(active);
+        for (int a = 0; a < 3; ++a) I[a] = lane_select(mask, shaded[a], I[a]);
+        stats.samples += static_cast<uint64_t>(__builtin_popcount(active));
     }
-    const Lane8f b0 = lanes(1.0f) - b1 - b2;
-    Lane8f N[3];
-    for (int a = 0; a < 3; ++a) {
-        p.P[a] = vp[0][a] * b0 + vp[1][a] * b1 + vp[2][a] * b2;
-        N[a] = vn[0][a] * b0 + vn[1][a] * b1 + vn[2][a] * b2;
+    store_colours(out, I[0], I[1], I[2]);
+    for (unsigned rest = covered & ~active; rest; rest &= rest - 1) {
+        const int k = __builtin_ctz(rest);
+        out[k] = shade_fragment(f, lighting, frags[k], stats);
     }
-    const Lane8f inv_length = lanes(1.0f) / lane_sqrt(N[0] * N[0] + N[1] * N[1] + N[2] * N[2]);
-    for (int a = 0; a < 3; ++a) p.N[a] = N[a] * inv_length;
-    if (f.perspective) {  // S = normalize(eye − P)
-        Lane8f to_eye[3];
-        for (int a = 0; a < 3; ++a) to_eye[a] = f.camera.position[a] - p.P[a];
-        const Lane8f inv = lanes(1.0f) / lane_sqrt(to_eye[0] * to_eye[0] + to_eye[1] * to_eye[1] +
-                                                   to_eye[2] * to_eye[2]);
-        for (int a = 0; a < 3; ++a) p.S[a] = to_eye[a] * inv;
-    } else {
-        for (int a = 0; a < 3; ++a) p.S[a] = lanes(f.camera.w[a]);
-    }
-    Lane8f I[3];
-    shade_lanes(p, lighting, (1u << n) - 1, I);
-    for (int k = 0; k < n; ++k) out[at[k]] = Rgb{I[0][k], I[1][k], I[2][k]};
-    stats.samples += static_cast<uint64_t>(n);
 }
 
 /// The same fragment's colour with its terms (SPEC §1.5; `tests`: the point's depth tests).

@@ -30,8 +30,8 @@ inline Lane8f dot(const Lane8f a[3], const Lane8f b[3]) {
 }  // namespace lanes_detail
 
 /// shade(p_k, lighting, AllVisible{}) in lane k of I, for the lanes of `active` (bit k: lane k).
-inline void shade_lanes(const ShadingLanes& p, const Lighting& lighting, unsigned active,
-                        Lane8f I[3]) {
+[[gnu::always_inline]] inline void shade_lanes(const ShadingLanes& p, const Lighting& lighting,
+                                               unsigned active, Lane8f I[3]) {
     using lanes_detail::dot;
     const Lane8f zero = lanes(0.0f), one = lanes(1.0f);
 
@@ -79,11 +79,14 @@ inline void shade_lanes(const ShadingLanes& p, const Lighting& lighting, unsigne
                 diffuse[a] = (Il_att[a] * p.kd[a]) * cos_theta;
             }
             // cosα^n lane by lane, where the light is in front and Ks > 0 (else no power)
-            Lane8f power = zero;
+            alignas(32) float cos_a[kPacketLanes], n[kPacketLanes], pow_a[kPacketLanes] = {};
+            store_lanes(cos_a, cos_alpha);
+            store_lanes(n, p.n);
             for (unsigned m = lane_bits(lit & has_specular) & active; m; m &= m - 1) {
                 const int k = __builtin_ctz(m);
-                power[k] = phong_power(cos_alpha[k], p.n[k]);
+                pow_a[k] = phong_power(cos_a[k], n[k]);
             }
+            const Lane8f power = load_lanes(pow_a);
             const Lane8i specular_lanes = lit & has_specular;
             for (int a = 0; a < 3; ++a)
                 specular[a] = lane_select(specular_lanes, (Il_att[a] * p.ks[a]) * power, zero);
