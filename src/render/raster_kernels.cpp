@@ -3,6 +3,8 @@
 #include "render/raster_kernels.h"
 
 #include <algorithm>
+#include <cstddef>
+#include <cstring>
 #include <utility>
 
 #include "geometry/ray_packet.h"
@@ -84,6 +86,33 @@ inline void original_bary(const EdgeSetup& s, const std::array<Vec3, 3>* clip_ba
         o1 = ob.y;
         o2 = ob.z;
     }
+}
+
+/// f[k] = {depth[k], triangle, o1[k], o2[k]} for the lanes k where `nearer` is set, f[k] as it
+/// was elsewhere: the lanes transposed into eight 16-byte fragments, blended with the eight
+/// there, four 32-byte stores.
+inline void store_fragments(Fragment* f, Lane8i nearer, Lane8f depth, uint32_t triangle, Lane8f o1,
+                            Lane8f o2) {
+    static_assert(sizeof(Fragment) == 4 * sizeof(float) && offsetof(Fragment, triangle) == 4 &&
+                  offsetof(Fragment, b1) == 8 && offsetof(Fragment, b2) == 12);
+    const Lane8f t = (Lane8f)(Lane8i{} + static_cast<int32_t>(triangle));
+    // (d0 t d1 t d2 t d3 t), (o1₀ o2₀ o1₁ o2₁ …) and the same of lanes 4 … 7
+    const Lane8f dt_lo = __builtin_shufflevector(depth, t, 0, 8, 1, 9, 2, 10, 3, 11);
+    const Lane8f o_lo = __builtin_shufflevector(o1, o2, 0, 8, 1, 9, 2, 10, 3, 11);
+    const Lane8f dt_hi = __builtin_shufflevector(depth, t, 4, 12, 5, 13, 6, 14, 7, 15);
+    const Lane8f o_hi = __builtin_shufflevector(o1, o2, 4, 12, 5, 13, 6, 14, 7, 15);
+    const Lane8f fresh[4] = {__builtin_shufflevector(dt_lo, o_lo, 0, 1, 8, 9, 2, 3, 10, 11),
+                             __builtin_shufflevector(dt_lo, o_lo, 4, 5, 12, 13, 6, 7, 14, 15),
+                             __builtin_shufflevector(dt_hi, o_hi, 0, 1, 8, 9, 2, 3, 10, 11),
+                             __builtin_shufflevector(dt_hi, o_hi, 4, 5, 12, 13, 6, 7, 14, 15)};
+    const Lane8i mask[4] = {__builtin_shufflevector(nearer, nearer, 0, 0, 0, 0, 1, 1, 1, 1),
+                            __builtin_shufflevector(nearer, nearer, 2, 2, 2, 2, 3, 3, 3, 3),
+                            __builtin_shufflevector(nearer, nearer, 4, 4, 4, 4, 5, 5, 5, 5),
+                            __builtin_shufflevector(nearer, nearer, 6, 6, 6, 6, 7, 7, 7, 7)};
+    Lane8f held[4];
+    std::memcpy(held, f, sizeof held);
+    for (int i = 0; i < 4; ++i) held[i] = lane_select(mask[i], fresh[i], held[i]);
+    std::memcpy(f, held, sizeof held);
 }
 
 }  // namespace
@@ -171,8 +200,9 @@ void rasterize_triangle_lanes(bool persp, const RasterTriangle& r,
     // point exactly.
     double A[3], B[3];
     for (int k = 0; k < 3; ++k) {
-        A[k] = s.ex[k] != 0 ? -static_cast<double>(s.e0[k]) / static_cast<double>(s.ex[k]) : 0;
-        B[k] = s.ex[k] != 0 ? -static_cast<double>(s.ey[k]) / static_cast<double>(s.ex[k]) : 0;
+        const double inv_ex = s.ex[k] != 0 ? -1.0 / static_cast<double>(s.ex[k]) : 0;
+        A[k] = static_cast<double>(s.e0[k]) * inv_ex;
+        B[k] = static_cast<double>(s.ey[k]) * inv_ex;
     }
     const int last = s.px1 - s.px0;           // the box's last step
     const bool spans = last >= kPacketLanes;  // else a row is one group of lanes anyway
@@ -229,6 +259,11 @@ void rasterize_triangle_lanes(bool persp, const RasterTriangle& r,
             unsigned pass = lane_bits(nearer);
             if (!pass) continue;
             store_lanes(row_depths + px, lane_select(nearer, depth, held));
+            if (n == kPacketLanes && !clip_bary) {  // eight fragments in the row: blended
+                store_fragments(f, nearer, depth, r.triangle, s.swapped ? b2 : b1,
+                                s.swapped ? b1 : b2);
+                continue;
+            }
             while (pass) {
                 const int k = __builtin_ctz(pass);
                 pass &= pass - 1;
