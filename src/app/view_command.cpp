@@ -1,11 +1,16 @@
-// `luz view` options and dispatch.
+// `luz view` options and dispatch: the viewer itself is a module (luz_viewer.so) loaded here.
 #include "app/view_command.h"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
 #ifdef LUZ_HAVE_VIEWER
-#include "app/viewer/viewer.h"
+#include <dlfcn.h>
+
+#include <filesystem>
+#include <string>
+#include <system_error>
+#include <vector>
 #endif
 
 namespace luz {
@@ -35,9 +40,44 @@ void add_view_options(CLI::App& cmd, ViewOptions& o) {
                  "no window: print the preview's refinement passes per second");
 }
 
+#ifdef LUZ_HAVE_VIEWER
+namespace {
+
+/// Where luz_viewer.so is: beside the running binary (a build tree), else where `cmake
+/// --install` puts it relative to the binary (LUZ_VIEWER_FROM_BINDIR: bin/ → lib/…/luz/).
+std::vector<std::string> viewer_module_paths() {
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (ec) return {"luz_viewer.so"};
+    const std::filesystem::path dir = exe.parent_path();
+    return {(dir / "luz_viewer.so").string(),
+            (dir / LUZ_VIEWER_FROM_BINDIR / "luz_viewer.so").lexically_normal().string()};
+}
+
+}  // namespace
+#endif
+
 int run_view(const ViewOptions& o) {
 #ifdef LUZ_HAVE_VIEWER
-    return run_viewer(o);
+    // The viewer is a module loaded on demand: `luz render` and the rest never load SDL2.
+    std::string tried;
+    for (const std::string& path : viewer_module_paths()) {
+        if (!std::filesystem::exists(path)) {
+            tried += "\n  " + path + ": not found";
+            continue;
+        }
+        void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (!module) {
+            tried += "\n  " + path + ": " + dlerror();
+            continue;
+        }
+        using Run = int (*)(const ViewOptions*);
+        if (auto run = reinterpret_cast<Run>(dlsym(module, "luz_viewer_run"))) return run(&o);
+        tried += "\n  " + path + ": no luz_viewer_run";
+    }
+    std::fprintf(stderr, "luz view: cannot load the viewer module luz_viewer.so:%s\n",
+                 tried.c_str());
+    return 1;
 #else
     (void)o;
     std::fprintf(stderr,

@@ -11,6 +11,10 @@
 #include <immintrin.h>
 #endif
 
+// Eight-lane values passed by value between inline functions: without AVX GCC notes that their
+// ABI differs from an AVX build's; they never cross a library boundary.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 namespace luz {
 
 inline constexpr int kPacketLanes = 8;

@@ -22,6 +22,18 @@ cmake --build "$tmp/build" >/dev/null
 cmp "$tmp/minimal.png" "$tmp/cli.png"
 echo "examples/minimal wrote the same $(stat -c %s "$tmp/cli.png") bytes as luz render"
 
+# The viewer, when it was built, is a module the installed luz finds and loads (luz view); luz
+# render does not load SDL2.
+if [ -n "$(find "$tmp/prefix" -name luz_viewer.so)" ]; then
+  "$tmp/prefix/bin/luz" view demo:primitives --benchmark --width 16 --height 12 --threads 1 |
+    grep -q "all passes"
+  if ldd "$tmp/prefix/bin/luz" | grep -q SDL2; then
+    echo "luz links SDL2: the viewer should be a module" >&2
+    exit 1
+  fi
+  echo "the installed luz loads its viewer module; luz itself does not link SDL2"
+fi
+
 # The Python package, when it was built: importable from where it was installed.
 for site in "$tmp"/prefix/lib/python3*/site-packages; do
   if [ -d "$site/luz" ]; then

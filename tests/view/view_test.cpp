@@ -193,5 +193,21 @@ TEST_F(ViewTest, RenderThreadCancelsPromptly) {
     EXPECT_LT(std::stod(m[2]), 250.0) << r.out;  // generous: the machine is shared
 }
 
+TEST_F(ViewTest, WithoutItsModuleViewSaysWhereItLookedAndRenderStillWorks) {
+    // A copy of the binary in a folder of its own: luz_viewer.so is not beside it.
+    fs::create_directories(dir_ / "bin");
+    fs::copy_file(LUZ_BINARY, dir_ / "bin" / "luz");
+    const std::string luz = (dir_ / "bin" / "luz").string();
+    const RunResult v = run_program(luz, {"view", "demo:primitives", "--benchmark"}, dir_);
+    EXPECT_EQ(v.status, 1);
+    EXPECT_NE(v.err.find("cannot load the viewer module luz_viewer.so"), std::string::npos)
+        << v.err;
+    EXPECT_NE(v.err.find((dir_ / "bin" / "luz_viewer.so").string()), std::string::npos) << v.err;
+    const RunResult r = run_program(
+        luz, {"render", "demo:primitives", "--width", "16", "--height", "12", "-o", "p.png"}, dir_);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir_ / "p.png"));
+}
+
 }  // namespace
 }  // namespace luz::test
