@@ -68,15 +68,6 @@ inline Lane8f lane_select(Lane8i mask, Lane8f a, Lane8f b) {
 }
 inline Lane8i lane_select(Lane8i mask, Lane8i a, Lane8i b) { return (a & mask) | (b & ~mask); }
 /// base[index[k]] in lane k.
-inline Lane8f gather_lanes(const float* base, Lane8i index) {
-#if defined(__AVX2__)
-    return (Lane8f)_mm256_i32gather_ps(base, (__m256i)index, 4);
-#else
-    Lane8f v;
-    for (int k = 0; k < kPacketLanes; ++k) v[k] = base[index[k]];
-    return v;
-#endif
-}
 inline Lane8i gather_lanes(const int32_t* base, Lane8i index) {
 #if defined(__AVX2__)
     return (Lane8i)_mm256_i32gather_epi32(base, (__m256i)index, 4);
@@ -85,10 +76,6 @@ inline Lane8i gather_lanes(const int32_t* base, Lane8i index) {
     for (int k = 0; k < kPacketLanes; ++k) v[k] = base[index[k]];
     return v;
 #endif
-}
-/// The same for unsigned values (below 2^31).
-inline Lane8i gather_lanes(const uint32_t* base, Lane8i index) {
-    return gather_lanes(reinterpret_cast<const int32_t*>(base), index);
 }
 
 }  // namespace luz
