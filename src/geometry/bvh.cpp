@@ -155,6 +155,7 @@ class Builder {
         : refs_(refs),
           options_(options),
           bins_(std::clamp(options.bins, 2, kMaxBins)),
+          block_(std::max<size_t>(options.leaf_block, 1)),
           serial_below_(tbb::this_task_arena::max_concurrency() > 1 ? kSerialBelow
                                                                     : kSerialBelow1) {}
 
@@ -315,7 +316,8 @@ class Builder {
                 acc.expand(bins.bin[a][k].box);
                 c += bins.bin[a][k].n;
                 if (c == 0 || right_count[k] == 0) continue;
-                const float sum = measure.of_nonempty(acc) * c + right_measure[k] * right_count[k];
+                const float sum = measure.of_nonempty(acc) * blocks(c) +
+                                  right_measure[k] * blocks(right_count[k]);
                 if (sum < best_sum) {
                     best_sum = sum;
                     best_axis = a;
@@ -326,7 +328,7 @@ class Builder {
         if (best_axis < 0) return median(begin, end, widest, child);
         const float best_cost = options_.traversal_cost + best_sum / measure(box);
         // A leaf when it costs no more than the split and is small enough.
-        if (count <= options_.max_leaf_size && !(best_cost < static_cast<float>(count))) {
+        if (count <= options_.max_leaf_size && !(best_cost < blocks(count))) {
             return begin;
         }
 
@@ -471,8 +473,8 @@ class Builder {
             for (int a = 0; a < 3; ++a) {
                 const Ref& r = refs_[begin + order[a][k]];
                 acc[a].expand(Box{r.lo, r.hi});
-                const float sum = measure.of_nonempty(acc[a]) * static_cast<float>(k + 1) +
-                                  right_measure[a][k] * static_cast<float>(n - k - 1);
+                const float sum = measure.of_nonempty(acc[a]) * blocks(k + 1) +
+                                  right_measure[a][k] * blocks(n - k - 1);
                 if (sum < axis_sum[a]) {
                     axis_sum[a] = sum;
                     axis_k[a] = k;
@@ -490,8 +492,7 @@ class Builder {
         }
         if (best_axis < 0) return median(begin, end, 0, child);
         const float best_cost = options_.traversal_cost + best_sum / measure(box);
-        if (static_cast<uint32_t>(n) <= options_.max_leaf_size &&
-            !(best_cost < static_cast<float>(n))) {
+        if (static_cast<uint32_t>(n) <= options_.max_leaf_size && !(best_cost < blocks(n))) {
             return begin;  // a leaf when it costs no more than the split and is small enough
         }
         // reorder by the best axis; the children's bounds
@@ -519,9 +520,13 @@ class Builder {
         return mid;
     }
 
+    /// n primitives as the SAH counts them: the blocks of options_.leaf_block they fill.
+    float blocks(size_t n) const { return static_cast<float>((n + block_ - 1) / block_); }
+
     std::vector<Ref>& refs_;
     const BvhOptions& options_;
     int bins_;
+    size_t block_;
     size_t serial_below_;  // smaller subtrees are built by one task
 };
 

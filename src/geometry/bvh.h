@@ -42,10 +42,13 @@ static_assert(sizeof(BvhNode) == 32);
 
 /// Build settings: SAH costs (a node visit costs `traversal_cost` primitive tests), bins per
 /// axis, and the leaf size above which a node is always split (if its primitives can be).
+/// With leaf_block > 1 the SAH counts a leaf's primitives in blocks of that many, tested at
+/// once (a node visit then costs `traversal_cost` block tests).
 struct BvhOptions {
     int bins = 16;
     float traversal_cost = 1.0f;
     uint32_t max_leaf_size = 8;
+    uint32_t leaf_block = 1;
 };
 
 class Bvh {

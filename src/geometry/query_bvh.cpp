@@ -1,5 +1,6 @@
 // BuiltScene queries by the scene's BVH (render.accel = bvh): bounded shapes and mesh triangles in
-// the 8-wide BVH, planes tested apart; ties resolved by Best, crossings counted by material.
+// the 8-wide BVH, its leaves' triangles tested four at a time, planes tested apart; ties
+// resolved by Best, crossings counted by material.
 #include "geometry/query_parts.h"
 
 namespace luz::query {
@@ -10,15 +11,15 @@ bool nearest_hit_bvh(const BuiltScene& scene, const Ray& r, float t_min, float t
     for (uint32_t i : scene.unbounded) offer_shape(scene, i, r, t_min, best, counters);
     const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
     float limit = best.t;
-    scene.bvh.nearest(r, t_min, limit, counters.bounds, [&](uint32_t slot, float& node_limit) {
-        const BvhPrim& p = scene.bvh_prims[slot];
-        if (p.triangle != BvhPrim::kNotTriangle) {
-            offer_triangle(w, p.p0, p.p1, p.p2, p.shape, p.triangle, t_min, best, counters);
-        } else {
-            offer_shape(scene, p.shape, r, t_min, best, counters);
-        }
-        node_limit = best.t;
-    });
+    scene.bvh.nearest_leaves(
+        r, t_min, limit, counters.bounds, [&](uint32_t first, uint32_t count, float& node_limit) {
+            const PrimBlock* b = &scene.bvh_blocks[first / PrimBlock::kLanes];
+            for (uint32_t left = count;; left -= PrimBlock::kLanes, ++b) {
+                offer_block(scene, *b, block_lanes(left), r, w, t_min, best, counters);
+                if (left <= PrimBlock::kLanes) break;
+            }
+            node_limit = best.t;
+        });
     if (best.found) hit = best.hit;
     return best.found;
 }
@@ -30,14 +31,16 @@ float transmittance_bvh(const BuiltScene& scene, const Materials& materials, con
         if (!cross_shape(scene, materials, i, r, t_min, t_max, crossings, counters)) return 0.0f;
     }
     const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
-    const bool blocked = scene.bvh.any(r, t_min, t_max, counters.bounds, [&](uint32_t slot) {
-        const BvhPrim& p = scene.bvh_prims[slot];
-        if (p.triangle != BvhPrim::kNotTriangle) {
-            return !cross_triangle(scene, materials, w, p.p0, p.p1, p.p2, p.shape, p.triangle,
-                                   t_min, t_max, crossings, counters);
-        }
-        return !cross_shape(scene, materials, p.shape, r, t_min, t_max, crossings, counters);
-    });
+    const bool blocked =
+        scene.bvh.any_leaves(r, t_min, t_max, counters.bounds, [&](uint32_t first, uint32_t count) {
+            const PrimBlock* b = &scene.bvh_blocks[first / PrimBlock::kLanes];
+            for (uint32_t left = count;; left -= PrimBlock::kLanes, ++b) {
+                if (!cross_block(scene, materials, *b, block_lanes(left), r, w, t_min, t_max,
+                                 crossings, counters))
+                    return true;
+                if (left <= PrimBlock::kLanes) return false;
+            }
+        });
     return blocked ? 0.0f : crossings.product();
 }
 

@@ -1,7 +1,8 @@
 // The nearest hits of a packet of rays by the scene's BVH (render.accel = bvh, more than a direct
-// scene): one traversal for up to eight rays (wide_bvh_packet.h), a leaf's triangles tested
-// against all its rays side by side with the watertight test's arithmetic lane for lane, ties
-// resolved per ray by Best. Each ray's answer is the one nearest_hit_bvh() gives it.
+// scene): one traversal for up to eight rays (wide_bvh_packet.h); at a leaf, each triangle
+// against the rays that reach it side by side, or (few rays) each ray against the leaf's blocks
+// of four, both with the watertight test's arithmetic lane for lane; ties resolved per ray by
+// Best. Each ray's answer is the one nearest_hit_bvh() gives it.
 #include "geometry/query_parts.h"
 #include "geometry/ray_packet.h"
 #include "geometry/wide_bvh_packet.h"
@@ -43,26 +44,13 @@ unsigned triangle_lanes(const WatertightLanes& r, const Vec3& p0, const Vec3& p1
                         float t_min, Lane8f limit, Lane8f& t, Lane8f& b1, Lane8f& b2,
                         unsigned& scalar) {
     using watertight_detail::at;
-    const Lane8f Az = lanes(at(p0, r.kz)) - r.oz, Bz = lanes(at(p1, r.kz)) - r.oz,
-                 Cz = lanes(at(p2, r.kz)) - r.oz;
-    const Lane8f Ax = (lanes(at(p0, r.kx)) - r.ox) - r.Sx * Az;
-    const Lane8f Ay = (lanes(at(p0, r.ky)) - r.oy) - r.Sy * Az;
-    const Lane8f Bx = (lanes(at(p1, r.kx)) - r.ox) - r.Sx * Bz;
-    const Lane8f By = (lanes(at(p1, r.ky)) - r.oy) - r.Sy * Bz;
-    const Lane8f Cx = (lanes(at(p2, r.kx)) - r.ox) - r.Sx * Cz;
-    const Lane8f Cy = (lanes(at(p2, r.ky)) - r.oy) - r.Sy * Cz;
-    const Lane8f U = Cx * By - Cy * Bx, V = Ax * Cy - Ay * Cx, W = Bx * Ay - By * Ax;
-    const Lane8f zero = lanes(0.0f);
-    scalar = lane_bits((U == zero) | (V == zero) | (W == zero));
-    const Lane8i outside =
-        ((U < zero) | (V < zero) | (W < zero)) & ((U > zero) | (V > zero) | (W > zero));
-    const Lane8f det = U + V + W;
-    const Lane8f T = U * (r.Sz * Az) + V * (r.Sz * Bz) + W * (r.Sz * Cz);
-    const Lane8f inv_det = lanes(1.0f) / det;
-    t = T * inv_det;
-    b1 = V * inv_det;
-    b2 = W * inv_det;
-    const Lane8i hit = ~outside & (det != zero) & (t > lanes(t_min)) & (t < limit);
+    const Lane8f x[3] = {lanes(at(p0, r.kx)), lanes(at(p1, r.kx)), lanes(at(p2, r.kx))};
+    const Lane8f y[3] = {lanes(at(p0, r.ky)), lanes(at(p1, r.ky)), lanes(at(p2, r.ky))};
+    const Lane8f z[3] = {lanes(at(p0, r.kz)), lanes(at(p1, r.kz)), lanes(at(p2, r.kz))};
+    Lane8i defer;
+    const Lane8i hit = intersect_triangle_lanes(x, y, z, r.ox, r.oy, r.oz, r.Sx, r.Sy, r.Sz,
+                                                lanes(t_min), limit, t, b1, b2, defer);
+    scalar = lane_bits(defer);
     return lane_bits(hit) & ~scalar;
 }
 
@@ -86,37 +74,65 @@ void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_m
         limit[k] = k < n ? best[k].limit() : t_max;
         node_limit[k] = k < n ? best[k].t : t_max;
     }
+    const auto update = [&](int k) {
+        limit[k] = best[k].limit();
+        node_limit[k] = best[k].t;
+    };
+    // Each of rays `active` against the leaf's blocks, four primitives at a time.
+    const auto one_ray_at_a_time = [&](uint32_t first, uint32_t count, unsigned active) {
+        for (; active != 0; active &= active - 1) {
+            const int k = __builtin_ctz(active);
+            const PrimBlock* b = &scene.bvh_blocks[first / PrimBlock::kLanes];
+            for (uint32_t left = count;; left -= PrimBlock::kLanes, ++b) {
+                offer_block(scene, *b, block_lanes(left), rays[k], w[k], t_min, best[k], counters);
+                if (left <= PrimBlock::kLanes) break;
+            }
+            update(k);
+        }
+    };
+    // Each of the leaf's primitives against rays `active` side by side (triangles, when the rays
+    // share their axes), or one by one.
+    const auto one_primitive_at_a_time = [&](uint32_t first, uint32_t count, unsigned active) {
+        for (uint32_t slot = first; slot < first + count; ++slot) {
+            const BvhPrim p = scene.bvh_prim(slot);
+            unsigned one_by_one = active;
+            if (p.triangle != BvhPrim::kNotTriangle && lanes_share_axes) {
+                Lane8f t, b1, b2;
+                unsigned scalar;
+                unsigned hit = triangle_lanes(wl, p.p0, p.p1, p.p2, t_min, load_lanes(limit), t, b1,
+                                              b2, scalar) &
+                               active;
+                one_by_one = scalar & active;
+                counters.primitive += __builtin_popcount(active & ~one_by_one);
+                for (; hit != 0; hit &= hit - 1) {
+                    const int k = __builtin_ctz(hit);
+                    if (!best[k].better(t[k], p.shape, p.triangle)) continue;
+                    best[k].take(t[k], p.shape, p.triangle, b1[k], b2[k],
+                                 static_cast<int>(p.triangle));
+                    update(k);
+                }
+            }
+            for (; one_by_one != 0; one_by_one &= one_by_one - 1) {
+                const int k = __builtin_ctz(one_by_one);
+                if (p.triangle != BvhPrim::kNotTriangle) {
+                    offer_triangle(w[k], p.p0, p.p1, p.p2, p.shape, p.triangle, t_min, best[k],
+                                   counters);
+                } else {
+                    offer_shape(scene, p.shape, rays[k], t_min, best[k], counters);
+                }
+                update(k);
+            }
+        }
+    };
     nearest_packet(scene.bvh, packet, all, t_min, node_limit, counters.bounds,
-                   [&](uint32_t slot, unsigned active) {
-                       const BvhPrim& p = scene.bvh_prims[slot];
-                       unsigned one_by_one = active;
-                       if (p.triangle != BvhPrim::kNotTriangle && lanes_share_axes) {
-                           Lane8f t, b1, b2;
-                           unsigned scalar;
-                           unsigned hit = triangle_lanes(wl, p.p0, p.p1, p.p2, t_min,
-                                                         load_lanes(limit), t, b1, b2, scalar) &
-                                          active;
-                           one_by_one = scalar & active;
-                           counters.primitive += __builtin_popcount(active & ~one_by_one);
-                           for (; hit != 0; hit &= hit - 1) {
-                               const int k = __builtin_ctz(hit);
-                               if (!best[k].better(t[k], p.shape, p.triangle)) continue;
-                               best[k].take(t[k], p.shape, p.triangle, b1[k], b2[k],
-                                            static_cast<int>(p.triangle));
-                               limit[k] = best[k].limit();
-                               node_limit[k] = best[k].t;
-                           }
-                       }
-                       for (; one_by_one != 0; one_by_one &= one_by_one - 1) {
-                           const int k = __builtin_ctz(one_by_one);
-                           if (p.triangle != BvhPrim::kNotTriangle) {
-                               offer_triangle(w[k], p.p0, p.p1, p.p2, p.shape, p.triangle, t_min,
-                                              best[k], counters);
-                           } else {
-                               offer_shape(scene, p.shape, rays[k], t_min, best[k], counters);
-                           }
-                           limit[k] = best[k].limit();
-                           node_limit[k] = best[k].t;
+                   [&](uint32_t first, uint32_t count, unsigned active) {
+                       // eight lanes for the rays, or four for the primitives: the fewer tests
+                       const uint32_t rays_in = static_cast<uint32_t>(__builtin_popcount(active));
+                       const uint32_t blocks = (count + PrimBlock::kLanes - 1) / PrimBlock::kLanes;
+                       if (!lanes_share_axes || rays_in * blocks <= count) {
+                           one_ray_at_a_time(first, count, active);
+                       } else {
+                           one_primitive_at_a_time(first, count, active);
                        }
                    });
     for (int k = 0; k < n; ++k) {

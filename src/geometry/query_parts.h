@@ -64,6 +64,42 @@ inline void offer_triangle(const WatertightRay& w, const Vec3& p0, const Vec3& p
     }
 }
 
+/// Lanes `lanes` of BVH block b against r (w: r prepared for the watertight test): its
+/// triangles four at a time (intersect_triangles4(), the rare double path one by one), its
+/// shapes one by one. Inlined: it is the inner loop of every mesh.
+[[gnu::always_inline]] inline void offer_block(const BuiltScene& scene, const PrimBlock& b,
+                                               unsigned lanes, const Ray& r, const WatertightRay& w,
+                                               float t_min, Best& best,
+                                               IntersectCounters& counters) {
+    const unsigned triangles = b.triangle_lanes() & lanes;
+    if (triangles != 0) {
+        Lane4f t, b1, b2;
+        unsigned scalar;
+        unsigned hit = intersect_triangles4(w, b, t_min, best.limit(), t, b1, b2, scalar);
+        scalar &= triangles;
+        hit &= triangles;
+        counters.primitive += static_cast<uint64_t>(__builtin_popcount(triangles & ~scalar));
+        for (; hit != 0; hit &= hit - 1) {
+            const int k = __builtin_ctz(hit);
+            if (best.better(t[k], b.shape[k], b.triangle[k]))
+                best.take(t[k], b.shape[k], b.triangle[k], b1[k], b2[k],
+                          static_cast<int>(b.triangle[k]));
+        }
+        for (; scalar != 0; scalar &= scalar - 1) {
+            const int k = __builtin_ctz(scalar);
+            offer_triangle(w, b.corner(0, k), b.corner(1, k), b.corner(2, k), b.shape[k],
+                           b.triangle[k], t_min, best, counters);
+        }
+    }
+    for (unsigned s = lanes & ~triangles; s != 0; s &= s - 1)
+        offer_shape(scene, b.shape[__builtin_ctz(s)], r, t_min, best, counters);
+}
+
+/// The lanes of the block at `left` primitives from a leaf's end: all four, or the first left.
+inline unsigned block_lanes(uint32_t left) {
+    return left >= PrimBlock::kLanes ? (1u << PrimBlock::kLanes) - 1 : (1u << left) - 1;
+}
+
 /// Transparent crossings counted per material; their product is taken in material order.
 class Crossings {
   public:
@@ -136,6 +172,39 @@ inline bool cross_triangle(const BuiltScene& scene, const Materials& materials,
     float t, b1, b2;
     if (!intersect_triangle(w, p0, p1, p2, t_min, t_max, t, b1, b2)) return true;
     return add_crossings(materials, scene.shapes[i].mesh->materials[tri], 1, crossings);
+}
+
+/// Lanes `lanes` of BVH block b against segment r; false if it meets an opaque surface.
+[[gnu::always_inline]] inline bool cross_block(const BuiltScene& scene, const Materials& materials,
+                                               const PrimBlock& b, unsigned lanes, const Ray& r,
+                                               const WatertightRay& w, float t_min, float t_max,
+                                               Crossings& crossings, IntersectCounters& counters) {
+    const unsigned triangles = b.triangle_lanes() & lanes;
+    if (triangles != 0) {
+        Lane4f t, b1, b2;
+        unsigned scalar;
+        unsigned hit = intersect_triangles4(w, b, t_min, t_max, t, b1, b2, scalar);
+        scalar &= triangles;
+        hit &= triangles;
+        counters.primitive += static_cast<uint64_t>(__builtin_popcount(triangles & ~scalar));
+        for (; hit != 0; hit &= hit - 1) {
+            const int k = __builtin_ctz(hit);
+            const int material = scene.shapes[b.shape[k]].mesh->materials[b.triangle[k]];
+            if (!add_crossings(materials, material, 1, crossings)) return false;
+        }
+        for (; scalar != 0; scalar &= scalar - 1) {
+            const int k = __builtin_ctz(scalar);
+            if (!cross_triangle(scene, materials, w, b.corner(0, k), b.corner(1, k), b.corner(2, k),
+                                b.shape[k], b.triangle[k], t_min, t_max, crossings, counters))
+                return false;
+        }
+    }
+    for (unsigned s = lanes & ~triangles; s != 0; s &= s - 1) {
+        if (!cross_shape(scene, materials, b.shape[__builtin_ctz(s)], r, t_min, t_max, crossings,
+                         counters))
+            return false;
+    }
+    return true;
 }
 
 // The strategies: each answers nearest_hit() and transmittance() (scene_query.h) alone.

@@ -62,6 +62,33 @@ inline bool intersect_triangle(const WatertightRay& r, const Vec3& p0, const Vec
     return true;
 }
 
+/// intersect_triangle() on lanes of type F (a GCC float vector; I its mask type), its arithmetic
+/// lane for lane, up to the decision: x[c], y[c], z[c] are corner c's coordinates on the ray's
+/// axes kx, ky, kz; o* and S* the ray's origin and shear on them. Returns the lanes that hit in
+/// (t_min, t_max) at t with barycentrics b1, b2; `scalar` holds the lanes whose edge functions
+/// need the double path (to be tested by intersect_triangle(); their hit lanes mean nothing).
+template <class F, class I>
+inline I intersect_triangle_lanes(const F (&x)[3], const F (&y)[3], const F (&z)[3], F ox, F oy,
+                                  F oz, F Sx, F Sy, F Sz, F t_min, F t_max, F& t, F& b1, F& b2,
+                                  I& scalar) {
+    const F Az = z[0] - oz, Bz = z[1] - oz, Cz = z[2] - oz;
+    const F Ax = (x[0] - ox) - Sx * Az, Ay = (y[0] - oy) - Sy * Az;
+    const F Bx = (x[1] - ox) - Sx * Bz, By = (y[1] - oy) - Sy * Bz;
+    const F Cx = (x[2] - ox) - Sx * Cz, Cy = (y[2] - oy) - Sy * Cz;
+    const F U = Cx * By - Cy * Bx, V = Ax * Cy - Ay * Cx, W = Bx * Ay - By * Ax;
+    const F zero = F{};
+    scalar = (U == zero) | (V == zero) | (W == zero);
+    const I outside =
+        ((U < zero) | (V < zero) | (W < zero)) & ((U > zero) | (V > zero) | (W > zero));
+    const F det = U + V + W;
+    const F T = U * (Sz * Az) + V * (Sz * Bz) + W * (Sz * Cz);
+    const F inv_det = (zero + 1.0f) / det;
+    t = T * inv_det;
+    b1 = V * inv_det;
+    b2 = W * inv_det;
+    return ~outside & (det != zero) & (t > t_min) & (t < t_max);
+}
+
 /// The nearest hit among all triangles of `mesh` (in index order; ties keep the lowest index):
 /// hit.part = the triangle, hit.u, hit.v its barycentrics. hit.shape is left to the caller.
 bool intersect_mesh(const Mesh& mesh, const WatertightRay& w, float t_min, float t_max, Hit& hit);

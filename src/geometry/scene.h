@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/prim_block.h"
 #include "geometry/shape.h"
 #include "geometry/sphere_group.h"
 #include "geometry/wide_bvh.h"
@@ -12,13 +13,13 @@
 namespace luz {
 
 /// A primitive of the scene's BVH: a bounded shape, or one triangle of a mesh shape with its
-/// world vertices copied here (so a leaf's triangles lie together in memory).
+/// world vertices (kept in the scene's blocks, so that a leaf's triangles lie together).
 struct BvhPrim {
     Vec3 p0, p1, p2;    ///< the triangle's vertices (mesh triangles only)
     uint32_t shape;     ///< index into BuiltScene::shapes
     uint32_t triangle;  ///< the mesh's triangle, or kNotTriangle for a whole shape
 
-    static constexpr uint32_t kNotTriangle = 0xFFFFFFFFu;
+    static constexpr uint32_t kNotTriangle = PrimBlock::kNotTriangle;
 };
 
 /// The scene's geometry as a render needs it: shapes, bounds, BVH. Settings (camera, lights,
@@ -31,10 +32,12 @@ struct BuiltScene {
     uint64_t mesh_triangles = 0;  ///< triangles in all meshes
 
     // Ray queries (scene_query.h). The BVH holds every bounded shape and every mesh triangle;
-    // unbounded shapes (planes) are tested apart. Built by build_bvh(): binned SAH, collapsed
-    // to 8-wide nodes (wide_bvh.h).
+    // unbounded shapes (planes) are tested apart. Built by build_bvh(): binned SAH counting
+    // blocks of four, collapsed to 8-wide nodes (wide_bvh.h).
     Bvh8 bvh;
-    std::vector<BvhPrim> bvh_prims;   ///< in the BVH's leaf order: slot i is bvh_prims[i]
+    /// The BVH's primitives: slot s is lane s % 4 of block s / 4; each leaf starts a block
+    /// (the lanes after its end are padding).
+    std::vector<PrimBlock> bvh_blocks;
     std::vector<uint32_t> unbounded;  ///< shapes outside the BVH (planes), in scene order
     bool has_bvh = false;  ///< build_bvh() ran: with render.accel bvh, queries use the BVH or
                            ///< (`direct`) test the few shapes in order
@@ -46,9 +49,15 @@ struct BuiltScene {
     std::vector<int> sphere_lane;  ///< per shape: its lane in sphere_groups (4·group + lane), or −1
     double bvh_build_seconds = 0;
 
+    /// The primitive in slot s of the BVH.
+    BvhPrim bvh_prim(uint32_t s) const {
+        const PrimBlock& b = bvh_blocks[s / PrimBlock::kLanes];
+        const int k = static_cast<int>(s % PrimBlock::kLanes);
+        return {b.corner(0, k), b.corner(1, k), b.corner(2, k), b.shape[k], b.triangle[k]};
+    }
     /// Bytes held by the BVH: nodes and primitives (the leaf order is not kept).
     size_t bvh_bytes() const {
-        return bvh.memory_bytes() + bvh_prims.capacity() * sizeof(BvhPrim) +
+        return bvh.memory_bytes() + bvh_blocks.capacity() * sizeof(PrimBlock) +
                unbounded.capacity() * sizeof(uint32_t);
     }
 };

@@ -72,12 +72,42 @@ class WideBvh {
     /// before t_max (with the same margin), children visited nearest first; each node visit
     /// adds W to box_tests.
     template <class Test>
-    void nearest(const Ray& r, float t_min, float& t_max, uint64_t& box_tests, Test&& test) const;
+    void nearest(const Ray& r, float t_min, float& t_max, uint64_t& box_tests, Test&& test) const {
+        nearest_leaves(r, t_min, t_max, box_tests, [&](uint32_t first, uint32_t count, float& t) {
+            for (uint32_t i = first, end = first + count; i < end; ++i) test(i, t);
+        });
+    }
+    /// nearest() a leaf at a time: test(first, count, t_max) for the leaf of slots first …
+    /// first + count − 1.
+    template <class Test>
+    void nearest_leaves(const Ray& r, float t_min, float& t_max, uint64_t& box_tests,
+                        Test&& test) const;
 
     /// As Bvh::any(): visit(slot) for every slot of every leaf whose box r meets, until it
     /// returns true; returns whether it did.
     template <class Visit>
-    bool any(const Ray& r, float t_min, float t_max, uint64_t& box_tests, Visit&& visit) const;
+    bool any(const Ray& r, float t_min, float t_max, uint64_t& box_tests, Visit&& visit) const {
+        return any_leaves(r, t_min, t_max, box_tests, [&](uint32_t first, uint32_t count) {
+            for (uint32_t i = first, end = first + count; i < end; ++i)
+                if (visit(i)) return true;
+            return false;
+        });
+    }
+    /// any() a leaf at a time: visit(first, count) for the leaf of slots first … first +
+    /// count − 1, until it returns true.
+    template <class Visit>
+    bool any_leaves(const Ray& r, float t_min, float t_max, uint64_t& box_tests,
+                    Visit&& visit) const;
+
+    /// Moves every leaf: its first slot becomes first(slot, count), called for the leaves in
+    /// node order (depth first), for an owner that lays its primitives out anew (the scene's
+    /// blocks of four, geometry/prim_block.h). order() no longer applies.
+    template <class First>
+    void renumber_leaves(First&& first) {
+        for (Node& n : nodes_)
+            for (int k = 0; k < W; ++k)
+                if (n.count[k] > 0) n.child[k] = first(n.child[k], n.count[k]);
+    }
 
   private:
     static constexpr int kStack = (W - 1) * Bvh::kMaxDepth + 4;  // ≤ W − 1 pushes per level
@@ -222,8 +252,8 @@ inline void sort_farthest_first(Entry* h, int m, Key&& key) {
 
 template <int W>
 template <class Test>
-void WideBvh<W>::nearest(const Ray& r, float t_min, float& t_max, uint64_t& box_tests,
-                         Test&& test) const {
+void WideBvh<W>::nearest_leaves(const Ray& r, float t_min, float& t_max, uint64_t& box_tests,
+                                Test&& test) const {
     using namespace bvh_detail;
     if (nodes_.empty()) return;
     const Node* nodes = nodes_.data();
@@ -237,7 +267,7 @@ void WideBvh<W>::nearest(const Ray& r, float t_min, float& t_max, uint64_t& box_
     Entry cur{0, 0, t_min};
     for (;;) {
         if (cur.count > 0) {
-            for (uint32_t i = cur.child, end = cur.child + cur.count; i < end; ++i) test(i, t_max);
+            test(cur.child, cur.count, t_max);
         } else {
             const Node& n = nodes[cur.child];
             float e[W];
@@ -290,8 +320,8 @@ void WideBvh<W>::nearest(const Ray& r, float t_min, float& t_max, uint64_t& box_
 
 template <int W>
 template <class Visit>
-bool WideBvh<W>::any(const Ray& r, float t_min, float t_max, uint64_t& box_tests,
-                     Visit&& visit) const {
+bool WideBvh<W>::any_leaves(const Ray& r, float t_min, float t_max, uint64_t& box_tests,
+                            Visit&& visit) const {
     using namespace bvh_detail;
     if (nodes_.empty()) return false;
     const Node* nodes = nodes_.data();
@@ -305,8 +335,7 @@ bool WideBvh<W>::any(const Ray& r, float t_min, float t_max, uint64_t& box_tests
     Entry cur{0, 0};
     for (;;) {
         if (cur.count > 0) {
-            for (uint32_t i = cur.child, end = cur.child + cur.count; i < end; ++i)
-                if (visit(i)) return true;
+            if (visit(cur.child, cur.count)) return true;
         } else {
             const Node& n = nodes[cur.child];
             float e[W];

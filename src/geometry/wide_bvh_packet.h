@@ -6,7 +6,8 @@
 //
 //     float t_max[8] = {...};  // per ray, lowered by test() as hits are found
 //     nearest_packet(bvh, packet, packet.all(), t_min, t_max, box_tests,
-//                    [&](uint32_t slot, unsigned lanes) { ... });  // the rays in `lanes`
+//                    [&](uint32_t first, uint32_t count, unsigned lanes) { ... });  // rays in
+//                    `lanes`
 #pragma once
 
 #include <cstdint>
@@ -56,9 +57,10 @@ inline Lane8f with_margin(Lane8f t_max) { return t_max + t_max * lanes(0x1p-16f)
 
 }  // namespace packet_detail
 
-/// For each ray of `active` (bit k: lane k of p), as bvh.nearest() would for it alone:
-/// test(slot, lanes) for the slots of every leaf whose box those rays meet before their t_max
-/// (with the same margin); test() lowers t_max[lane] as it finds hits. Children are visited
+/// For each ray of `active` (bit k: lane k of p), as bvh.nearest_leaves() would for it alone:
+/// test(first, count, lanes) for every leaf (slots first … first + count − 1) whose box those
+/// rays meet before their t_max (with the same margin); test() lowers t_max[lane] as it finds
+/// hits. Children are visited
 /// nearest first for the packet (by its rays' smallest entry). Adds 8 per node per ray to
 /// box_tests, as the single-ray traversal counts.
 template <class Test>
@@ -80,8 +82,7 @@ void nearest_packet(const Bvh8& bvh, const RayPacket& p, unsigned active, float 
     Entry cur{lanes(t_min), 0, 0, active, t_min};
     for (;;) {
         if (cur.count > 0) {
-            for (uint32_t i = cur.child, end = cur.child + cur.count; i < end; ++i)
-                test(i, cur.lanes);
+            test(cur.child, cur.count, cur.lanes);
         } else {
             const Bvh8::Node& n = nodes[cur.child];
             box_tests += 8 * static_cast<uint64_t>(__builtin_popcount(cur.lanes));

@@ -550,8 +550,8 @@ ObjectDesc bumpy_sphere(int n) {
     return mesh_object(p, idx, 0);
 }
 
-// The scene keeps its primitives in leaf order and not the order itself: a mesh and its BVH
-// (nodes and primitives with their vertices) take under 100 bytes per triangle.
+// The scene keeps its primitives in blocks of four, leaf by leaf, and not the order itself: a
+// mesh and its BVH (nodes and blocks with the vertices) take under 100 bytes per triangle.
 TEST(Bvh, SceneMeshAndBvhUnder100BytesPerTriangle) {
     for (int n : {64, 180}) {
         const BuiltScene scene = build_scene(scene_with({bumpy_sphere(n)}));
@@ -559,13 +559,102 @@ TEST(Bvh, SceneMeshAndBvhUnder100BytesPerTriangle) {
         EXPECT_TRUE(scene.bvh.order().empty());
         const Mesh& m = *scene.shapes[0].mesh;
         const size_t triangles = m.triangle_count();
-        EXPECT_EQ(scene.bvh_prims.size(), triangles);
-        EXPECT_EQ(scene.bvh_bytes(),
-                  scene.bvh.nodes().capacity() * sizeof(Bvh8::Node) + triangles * sizeof(BvhPrim));
+        EXPECT_GE(scene.bvh_blocks.size() * PrimBlock::kLanes, triangles);
+        EXPECT_EQ(scene.bvh_bytes(), scene.bvh.nodes().capacity() * sizeof(Bvh8::Node) +
+                                         scene.bvh_blocks.capacity() * sizeof(PrimBlock));
         const size_t bytes = scene.bvh_bytes() + m.positions.capacity() * sizeof(Vec3) +
                              m.indices.capacity() * sizeof(uint32_t);
         EXPECT_LT(static_cast<double>(bytes) / static_cast<double>(triangles), 100.0) << n;
     }
+}
+
+// Each leaf of the scene's BVH starts a block and holds at most two; every triangle and shape
+// is in exactly one leaf lane, with its own vertices; the lanes after a leaf's end are padding
+// (no shape, NaN vertices), and no block is shared by two leaves.
+TEST(Bvh, SceneLeavesStartBlocksAndHoldEachPrimitiveOnce) {
+    Rng rng(7);
+    const ObjectDesc soup = random_soup(rng, 2000, 0);
+    const BuiltScene scene =
+        build_scene(scene_with({soup, sphere({0, 0, 0}, 0.5f, 0), bumpy_sphere(40),
+                                sphere({1, 1, 1}, 0.5f, 1), box({2, 2, 2}, {3, 3, 3}, 0)}));
+    ASSERT_TRUE(scene.has_bvh);
+    ASSERT_FALSE(scene.direct);
+    std::vector<std::vector<int>> seen(scene.shapes.size());
+    for (size_t i = 0; i < scene.shapes.size(); ++i) {
+        const auto& mesh = scene.shapes[i].mesh;
+        seen[i].assign(mesh ? mesh->triangle_count() : 1, 0);
+    }
+    std::vector<int> block_used(scene.bvh_blocks.size(), 0);
+    for (const Bvh8::Node& node : scene.bvh.nodes()) {
+        for (int k = 0; k < 8; ++k) {
+            const uint32_t first = node.child[k], count = node.count[k];
+            if (count == 0) continue;
+            ASSERT_EQ(first % PrimBlock::kLanes, 0u);
+            ASSERT_LE(count, 8u);
+            const uint32_t blocks = (count + 3) / 4;
+            ASSERT_LE(first / 4 + blocks, scene.bvh_blocks.size());
+            for (uint32_t b = first / 4; b < first / 4 + blocks; ++b) ++block_used[b];
+            for (uint32_t slot = first; slot < first + count; ++slot) {
+                const BvhPrim p = scene.bvh_prim(slot);
+                ASSERT_LT(p.shape, scene.shapes.size());
+                const auto& mesh = scene.shapes[p.shape].mesh;
+                if (p.triangle == BvhPrim::kNotTriangle) {
+                    EXPECT_FALSE(mesh);
+                    ++seen[p.shape][0];
+                    continue;
+                }
+                ASSERT_TRUE(mesh);
+                ASSERT_LT(p.triangle, mesh->triangle_count());
+                ++seen[p.shape][p.triangle];
+                Vec3 p0, p1, p2;
+                mesh->vertices(p.triangle, p0, p1, p2);
+                EXPECT_TRUE(p.p0 == p0 && p.p1 == p1 && p.p2 == p2) << slot;
+            }
+            for (uint32_t slot = first + count; slot < first + 4 * blocks; ++slot) {
+                const PrimBlock& b = scene.bvh_blocks[slot / 4];
+                EXPECT_EQ(b.shape[slot % 4], PrimBlock::kPadding);
+                EXPECT_FALSE(b.is_triangle(slot % 4));
+                EXPECT_TRUE(std::isnan(b.v[0][0][slot % 4]));
+            }
+        }
+    }
+    for (int used : block_used) EXPECT_EQ(used, 1);
+    for (size_t i = 0; i < seen.size(); ++i)
+        for (size_t t = 0; t < seen[i].size(); ++t) EXPECT_EQ(seen[i][t], 1) << i << " " << t;
+}
+
+// Counting primitives in blocks (leaf_block) changes only the costs: leaf_block 1 is the plain
+// SAH tree; blocks of four give leaves that fill their blocks better.
+TEST(Bvh, SahCountingBlocks) {
+    Rng rng(3);
+    std::vector<Bounds3> boxes;
+    for (int i = 0; i < 5000; ++i) {
+        const Vec3 c = random_point(rng, -10, 10);
+        boxes.push_back(Bounds3{c - Vec3{0.1f}, c + Vec3{0.1f}});
+    }
+    BvhOptions one;
+    one.leaf_block = 1;
+    const Bvh plain = Bvh::build(boxes), same = Bvh::build(boxes, one);
+    ASSERT_EQ(plain.nodes().size(), same.nodes().size());
+    EXPECT_EQ(0, std::memcmp(plain.nodes().data(), same.nodes().data(),
+                             plain.nodes().size() * sizeof(BvhNode)));
+    EXPECT_EQ(plain.order(), same.order());
+    BvhOptions four;
+    four.leaf_block = 4;
+    four.traversal_cost = 0.7f;
+    const Bvh blocked = Bvh::build(boxes, four);
+    const auto fill = [](const Bvh& bvh) {
+        double prims = 0, blocks = 0;
+        for (const BvhNode& n : bvh.nodes()) {
+            if (!n.leaf()) continue;
+            EXPECT_LE(n.count, 8u);
+            prims += n.count;
+            blocks += (n.count + 3) / 4;
+        }
+        return prims / (4 * blocks);
+    };
+    EXPECT_EQ(blocked.order().size(), boxes.size());
+    EXPECT_GT(fill(blocked), fill(plain) + 0.2) << fill(blocked) << " vs " << fill(plain);
 }
 
 TEST(Bvh, EmptyAndCoincidentInputs) {

@@ -1,0 +1,136 @@
+// intersect_triangles4() against intersect_triangle(), lane by lane: on random triangles, on
+// triangles sharing edges and vertices that rays pass through exactly (where an edge function is
+// 0 and the test defers to the double path), on axis-aligned rays and on degenerate triangles,
+// every lane gives the scalar test's decision and, on a hit, its very t and barycentrics.
+#include "geometry/prim_block.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "geometry_fixtures.h"
+
+namespace luz {
+namespace {
+
+using test::random_direction;
+using test::random_point;
+using test::Rng;
+using test::uniform;
+
+uint32_t bits(float x) {
+    uint32_t u;
+    std::memcpy(&u, &x, sizeof u);
+    return u;
+}
+
+struct Triangle {
+    Vec3 p[3];
+};
+
+PrimBlock block_of(const Triangle* t) {
+    PrimBlock b;
+    for (int k = 0; k < 4; ++k) {
+        for (int c = 0; c < 3; ++c)
+            for (int a = 0; a < 3; ++a) b.v[c][a][k] = t[k].p[c][a];
+        b.shape[k] = 0;
+        b.triangle[k] = static_cast<uint32_t>(k);
+    }
+    return b;
+}
+
+/// Lane k of the block test against the scalar test, for the four triangles and ray r; counts
+/// the hits and the lanes left to the double path.
+void expect_same_as_scalar(const Triangle* tris, const Ray& r, float t_min, float t_max, int& hits,
+                           int& deferred) {
+    const WatertightRay w = prepare_watertight(r);
+    const PrimBlock b = block_of(tris);
+    Lane4f t, b1, b2;
+    unsigned scalar;
+    const unsigned hit = intersect_triangles4(w, b, t_min, t_max, t, b1, b2, scalar);
+    ASSERT_EQ(hit & scalar, 0u);
+    for (int k = 0; k < 4; ++k) {
+        float ts = 0, b1s = 0, b2s = 0;
+        const bool hs = intersect_triangle(w, tris[k].p[0], tris[k].p[1], tris[k].p[2], t_min,
+                                           t_max, ts, b1s, b2s);
+        if ((scalar >> k) & 1u) {
+            ++deferred;  // the caller tests this lane with intersect_triangle() itself
+            continue;
+        }
+        ASSERT_EQ(((hit >> k) & 1u) != 0, hs) << "lane " << k;
+        if (!hs) continue;
+        ++hits;
+        EXPECT_EQ(bits(t[k]), bits(ts));
+        EXPECT_EQ(bits(b1[k]), bits(b1s));
+        EXPECT_EQ(bits(b2[k]), bits(b2s));
+    }
+}
+
+TEST(PrimBlock, RandomTrianglesGiveTheScalarAnswersBitForBit) {
+    Rng rng(11);
+    int hits = 0, deferred = 0;
+    for (int i = 0; i < 20000; ++i) {
+        Triangle tris[4];
+        for (Triangle& t : tris) {
+            const Vec3 c = random_point(rng, -2, 2);
+            for (Vec3& p : t.p) p = c + random_point(rng, -1.5f, 1.5f);
+        }
+        // rays aimed at one of the triangles (so that about a quarter hit), or anywhere
+        const Vec3 o = random_point(rng, -5, 5);
+        const Triangle& aim = tris[i % 4];
+        const float u = uniform(rng, 0, 1), v = uniform(rng, 0, 1 - u);
+        const Vec3 target = aim.p[0] + (aim.p[1] - aim.p[0]) * u + (aim.p[2] - aim.p[0]) * v;
+        const Vec3 d = i % 3 == 0 ? random_direction(rng) : normalize(target - o);
+        const float t_max = i % 5 == 0 ? uniform(rng, 0.5f, 6) : 1e30f;
+        expect_same_as_scalar(tris, Ray{o, d}, 1e-4f, t_max, hits, deferred);
+    }
+    EXPECT_GT(hits, 10000);
+}
+
+// Rays through the shared vertices and edges of a grid (exactly, in float): edge functions of
+// 0, which the block leaves to the double path, and the watertight test's ties.
+TEST(PrimBlock, SharedEdgesAndVerticesAndAxisRays) {
+    int hits = 0, deferred = 0;
+    const Triangle grid[4] = {{{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}},
+                              {{{0, 0, 0}, {1, 1, 0}, {0, 1, 0}}},
+                              {{{1, 0, 0}, {2, 0, 0}, {2, 1, 0}}},
+                              {{{1, 0, 0}, {2, 1, 0}, {1, 1, 0}}}};
+    for (float x : {0.0f, 0.25f, 0.5f, 1.0f, 1.5f, 2.0f}) {
+        for (float y : {0.0f, 0.5f, 1.0f}) {
+            for (const Vec3& d : {Vec3{0, 0, -1}, Vec3{0, 0, 1}, normalize(Vec3{0.3f, 0.2f, -1})}) {
+                const Vec3 o = Vec3{x, y, 0} - d * 3.0f;
+                expect_same_as_scalar(grid, Ray{o, d}, 0.0f, 1e30f, hits, deferred);
+            }
+        }
+    }
+    EXPECT_GT(hits, 5);
+    EXPECT_GT(deferred, 0);  // the double path is reached
+    // degenerate lanes: zero area, a point, NaN vertices (padding)
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const Triangle odd[4] = {{{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}},
+                             {{{0.5f, 0.5f, 0}, {0.5f, 0.5f, 0}, {0.5f, 0.5f, 0}}},
+                             {{{nan, nan, nan}, {nan, nan, nan}, {nan, nan, nan}}},
+                             {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}};
+    const unsigned before = static_cast<unsigned>(hits);
+    for (const Vec3& d : {Vec3{0, 0, -1}, normalize(Vec3{0.1f, -0.2f, 1})}) {
+        expect_same_as_scalar(odd, Ray{Vec3{0.25f, 0.25f, 0} - d * 2.0f, d}, 0.0f, 1e30f, hits,
+                              deferred);
+    }
+    EXPECT_EQ(static_cast<unsigned>(hits), before + 2);  // only the real triangle
+}
+
+TEST(PrimBlock, TriangleLanesAndPaddingLanes) {
+    PrimBlock b;
+    for (int k = 0; k < 4; ++k) {
+        b.shape[k] = 0;
+        b.triangle[k] = k == 2 ? PrimBlock::kNotTriangle : static_cast<uint32_t>(k);
+    }
+    EXPECT_EQ(b.triangle_lanes(), 0b1011u);
+    EXPECT_FALSE(b.is_triangle(2));
+    EXPECT_TRUE(b.is_triangle(3));
+}
+
+}  // namespace
+}  // namespace luz
