@@ -6,32 +6,10 @@
 #include <cstdint>
 #include <cstring>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include "geometry/ray_triangle.h"
-
-// Four-lane values passed by value between inline functions (see math/lane8.h).
-#pragma GCC diagnostic ignored "-Wpsabi"
+#include "math/lane4.h"
 
 namespace luz {
-
-/// Four floats, four 32-bit masks (all bits set where true): GCC vector extensions, SSE2 lanes.
-typedef float Lane4f __attribute__((vector_size(16)));
-typedef int32_t Lane4i __attribute__((vector_size(16)));
-
-inline Lane4f lanes4(float x) { return Lane4f{x, x, x, x}; }
-/// Bit k set where lane k of `m` is true.
-inline unsigned lane_bits4(Lane4i m) {
-#if defined(__SSE2__)
-    return static_cast<unsigned>(_mm_movemask_ps((__m128)m));
-#else
-    unsigned bits = 0;
-    for (int k = 0; k < 4; ++k) bits |= (m[k] != 0 ? 1u : 0u) << k;
-    return bits;
-#endif
-}
 
 /// Slots 4b … 4b+3 of the scene's BVH: in lane k a bounded shape (triangle[k] = kNotTriangle)
 /// or one triangle of a mesh shape with its world vertices, by corner and axis

@@ -131,8 +131,13 @@ struct WideRay {
 #endif
     float os[3], invs[3];
     uint32_t near_at[3], far_at[3];  // byte offsets in WideBvhNode<W>
+    /// Every 1/direction finite and t_min ≥ 0: no slab distance is NaN, and the entry (a
+    /// maximum with t_min) is ≥ 0, so that maxima and minima of the distances may be taken on
+    /// their bits as integers (one cycle instead of four), with the same results (hit_wide()).
+    bool as_ints = false;
 
-    explicit WideRay(const Ray& r) {
+    WideRay(const Ray& r, float t_min) {
+        as_ints = t_min >= 0.0f;
         for (int a = 0; a < 3; ++a) {
             os[a] = r.origin[a];
             invs[a] = 1.0f / r.direction[a];
@@ -148,6 +153,7 @@ struct WideRay {
             const bool negative = std::signbit(invs[a]);  // −∞ for a −0 component
             near_at[a] = negative ? hi : lo;
             far_at[a] = negative ? lo : hi;
+            as_ints = as_ints && std::isfinite(invs[a]);
         }
     }
 };
@@ -190,6 +196,41 @@ template <int W>
 inline int hit_wide(const WideBvhNode<W>& n, const WideRay<W>& r, float t_min, float t_max,
                     float* entry) {
     const char* base = reinterpret_cast<const char*>(&n);
+#if defined(__AVX2__)
+    // No NaN and an entry ≥ 0 (WideRay::as_ints): a float's bits ordered as an integer order
+    // non-negative floats as floats do, and put every negative one below them. The entry, a
+    // maximum with t_min ≥ 0, is then the float maximum; the exit, a minimum (its −0s made
+    // +0 first), is the float minimum whenever that is ≥ 0, else some negative distance: a
+    // miss either way in the float comparison that follows.
+    if constexpr (W == 8) {
+        if (r.as_ints) {
+            const __m256 scale = _mm256_set1_ps(kExitScale);
+            const __m256i negative_zero = _mm256_set1_epi32(INT32_MIN);
+            __m256i t0[3], t1[3];
+            for (int a = 0; a < 3; ++a) {
+                const __m256 near_plane =
+                    _mm256_load_ps(reinterpret_cast<const float*>(base + r.near_at[a]));
+                const __m256 far_plane =
+                    _mm256_load_ps(reinterpret_cast<const float*>(base + r.far_at[a]));
+                t0[a] =
+                    _mm256_castps_si256(_mm256_mul_ps(_mm256_sub_ps(near_plane, r.o[a]), r.inv[a]));
+                t1[a] = _mm256_castps_si256(_mm256_mul_ps(
+                    _mm256_mul_ps(_mm256_sub_ps(far_plane, r.o[a]), r.inv[a]), scale));
+                // −0 (the origin on a far plane) is the least integer: make it +0
+                t1[a] = _mm256_andnot_si256(_mm256_cmpeq_epi32(t1[a], negative_zero), t1[a]);
+            }
+            const __m256i tn = _mm256_max_epi32(
+                _mm256_max_epi32(t0[0], t0[1]),
+                _mm256_max_epi32(t0[2], _mm256_castps_si256(_mm256_set1_ps(t_min))));
+            const __m256i tf = _mm256_min_epi32(
+                _mm256_min_epi32(t1[0], t1[1]),
+                _mm256_min_epi32(t1[2], _mm256_castps_si256(_mm256_set1_ps(t_max))));
+            _mm256_storeu_ps(entry, _mm256_castsi256_ps(tn));
+            return _mm256_movemask_ps(
+                _mm256_cmp_ps(_mm256_castsi256_ps(tn), _mm256_castsi256_ps(tf), _CMP_LE_OQ));
+        }
+    }
+#endif
 #if defined(__AVX__)
     if constexpr (W == 8) {
         __m256 tn = _mm256_set1_ps(t_min), tf = _mm256_set1_ps(t_max);
@@ -235,6 +276,13 @@ inline int hit_wide(const WideBvhNode<W>& n, const WideRay<W>& r, float t_min, f
 #endif
 }
 
+/// Asks for the cache lines of node n, about to be visited.
+template <class Node>
+inline void prefetch_node(const Node* n) {
+    const char* p = reinterpret_cast<const char*>(n);
+    for (size_t line = 0; line < sizeof(Node); line += 64) __builtin_prefetch(p + line);
+}
+
 /// Orders m ≤ 8 hit children farthest first (insertion sort by key(child)): the traversals
 /// push all but the last and visit the last, the nearest, now.
 template <class Entry, class Key>
@@ -263,7 +311,7 @@ void WideBvh<W>::nearest_leaves(const Ray& r, float t_min, float& t_max, uint64_
     };
     Entry stack[kStack];
     int top = 0;
-    const WideRay<W> wr(r);
+    const WideRay<W> wr(r, t_min);
     Entry cur{0, 0, t_min};
     for (;;) {
         if (cur.count > 0) {
@@ -287,6 +335,7 @@ void WideBvh<W>::nearest_leaves(const Ray& r, float t_min, float& t_max, uint64_
                     const bool swap = e[k1] < e[k0];
                     const int near = swap ? k1 : k0, far = swap ? k0 : k1;
                     stack[top++] = {n.child[far], n.count[far], e[far]};
+                    if (n.count[far] == 0) prefetch_node(nodes + n.child[far]);
                     cur = {n.child[near], n.count[near], e[near]};
                     continue;
                 }
@@ -301,7 +350,10 @@ void WideBvh<W>::nearest_leaves(const Ray& r, float t_min, float& t_max, uint64_
                 } while (mask != 0);
                 // farthest first onto the stack, the nearest now
                 sort_farthest_first(h, m, [](const Entry& x) { return x.entry; });
-                for (int i = 0; i + 1 < m; ++i) stack[top++] = h[i];
+                for (int i = 0; i + 1 < m; ++i) {
+                    stack[top++] = h[i];
+                    if (h[i].count == 0) prefetch_node(nodes + h[i].child);
+                }
                 cur = h[m - 1];
                 continue;
             }
@@ -330,7 +382,7 @@ bool WideBvh<W>::any_leaves(const Ray& r, float t_min, float t_max, uint64_t& bo
     };
     Entry stack[kStack];
     int top = 0;
-    const WideRay<W> wr(r);
+    const WideRay<W> wr(r, t_min);
     const float limit = with_margin(t_max);
     Entry cur{0, 0};
     for (;;) {

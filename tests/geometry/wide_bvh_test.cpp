@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <set>
 #include <vector>
@@ -313,6 +314,55 @@ TEST(WideBvh, EmptyAndSingleLeaf) {
     visited = 0;
     one.nearest({{5, 5, -1}, {0, 0, 1}}, 0.0f, t_max, tests, [&](uint32_t, float&) { ++visited; });
     EXPECT_EQ(visited, 0);
+}
+
+// hit_wide() on the distances' bits as integers (WideRay::as_ints, AVX2 builds) against the
+// float minima and maxima: the same children hit, at the same entry distances, for rays from
+// inside, outside and on the faces of grid-aligned boxes (−0 and exact-zero distances), with
+// unused children (empty boxes) and an exit before or at the entry.
+TEST(WideBvh, SlabDistancesAsIntegersGiveTheFloatAnswers) {
+    Rng rng(5);
+    const auto grid = [&] { return std::round(uniform(rng, -16, 16)) / 4; };
+    int hits = 0;
+    for (int i = 0; i < 20000; ++i) {
+        Bvh8::Node n;
+        for (int k = 0; k < 8; ++k) {
+            for (int a = 0; a < 3; ++a) {
+                const float x = grid(), y = grid();
+                n.lo[a][k] = std::min(x, y);
+                n.hi[a][k] = std::max(x, y);
+            }
+            if (k == 7 || rng() % 8 == 0) {  // unused
+                for (int a = 0; a < 3; ++a) {
+                    n.lo[a][k] = std::numeric_limits<float>::infinity();
+                    n.hi[a][k] = -std::numeric_limits<float>::infinity();
+                }
+            }
+            n.child[k] = n.count[k] = 0;
+        }
+        const Vec3 o{grid(), grid(), grid()};
+        Vec3 d = test::random_direction(rng);
+        if (i % 3 == 0) d = Vec3{grid(), grid(), grid()};  // a component of ±0 now and then
+        if (!(std::isfinite(1 / d.x) && std::isfinite(1 / d.y) && std::isfinite(1 / d.z))) continue;
+        const float t_min = i % 2 ? 0.0f : 1e-4f;
+        const float t_max = i % 5 == 0 ? uniform(rng, 0, 3) : 1e30f;
+        bvh_detail::WideRay<8> as_ints({o, d}, t_min), as_floats({o, d}, t_min);
+        as_floats.as_ints = false;
+#if defined(__AVX2__)
+        ASSERT_TRUE(as_ints.as_ints);
+#endif
+        float e_int[8], e_float[8];
+        const int m_int = bvh_detail::hit_wide<8>(n, as_ints, t_min, t_max, e_int);
+        const int m_float = bvh_detail::hit_wide<8>(n, as_floats, t_min, t_max, e_float);
+        ASSERT_EQ(m_int, m_float) << i;
+        for (int k = 0; k < 8; ++k)
+            if ((m_int >> k) & 1) EXPECT_EQ(e_int[k], e_float[k]) << i << " " << k;
+        hits += __builtin_popcount(static_cast<unsigned>(m_int));
+    }
+    EXPECT_GT(hits, 10000);
+    // a ray with a zero direction component, or a negative t_min, takes the float path
+    EXPECT_FALSE(bvh_detail::WideRay<8>(Ray{{0, 0, 0}, {0, 0, 1}}, 0.0f).as_ints);
+    EXPECT_FALSE(bvh_detail::WideRay<8>(Ray{{0, 0, 0}, {0.6f, 0.8f, 0.1f}}, -1.0f).as_ints);
 }
 
 TEST(WideBvh, SameTreeForAnyThreadCount) {
