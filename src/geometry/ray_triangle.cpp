@@ -1,4 +1,4 @@
-// The watertight ray–triangle test's ray set-up and rare double path (Woop, Benthin and Wald,
+// The watertight ray–triangle test's rare double path (Woop, Benthin and Wald,
 // JCGT 2013), and the nearest hit of a whole mesh by it.
 #include "geometry/ray_triangle.h"
 
@@ -6,23 +6,6 @@
 #include <utility>
 
 namespace luz {
-
-WatertightRay prepare_watertight(const Ray& r) {
-    WatertightRay w;
-    w.origin = r.origin;
-    const Vec3 a{std::fabs(r.direction.x), std::fabs(r.direction.y), std::fabs(r.direction.z)};
-    w.kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
-    w.kx = (w.kz + 1) % 3;
-    w.ky = (w.kx + 1) % 3;
-    if (r.direction[w.kz] < 0) std::swap(w.kx, w.ky);  // keeps the winding's sign
-    w.Sx = r.direction[w.kx] / r.direction[w.kz];
-    w.Sy = r.direction[w.ky] / r.direction[w.kz];
-    w.Sz = 1.0f / r.direction[w.kz];
-    w.ox = r.origin[w.kx];
-    w.oy = r.origin[w.ky];
-    w.oz = r.origin[w.kz];
-    return w;
-}
 
 namespace watertight_detail {
 

@@ -2,7 +2,9 @@
 // mesh shapes and the scene queries' BVH leaves. Inlined: it is the inner loop of every mesh.
 #pragma once
 
+#include <cmath>
 #include <type_traits>
+#include <utility>
 
 #include "geometry/hit.h"
 #include "geometry/mesh.h"
@@ -18,9 +20,6 @@ struct WatertightRay {
     float Sx = 0, Sy = 0, Sz = 1;
     float ox = 0, oy = 0, oz = 0;  ///< origin[kx], origin[ky], origin[kz]
 };
-/// Prepares ray r (any non-zero direction) for intersect_triangle().
-WatertightRay prepare_watertight(const Ray& r);
-
 namespace watertight_detail {
 
 static_assert(std::is_standard_layout_v<Vec3> && sizeof(Vec3) == 3 * sizeof(float));
@@ -32,6 +31,28 @@ void edges_in_double(float Ax, float Ay, float Bx, float By, float Cx, float Cy,
                      float& W);
 
 }  // namespace watertight_detail
+
+/// Prepares ray r (any non-zero direction) for intersect_triangle(). Inlined, with indexed
+/// loads and no branches: every ray of a mesh starts here.
+inline WatertightRay prepare_watertight(const Ray& r) {
+    using watertight_detail::at;
+    WatertightRay w;
+    w.origin = r.origin;
+    const float ax = std::fabs(r.direction.x), ay = std::fabs(r.direction.y),
+                az = std::fabs(r.direction.z);
+    w.kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+    w.kx = w.kz == 2 ? 0 : w.kz + 1;
+    w.ky = w.kx == 2 ? 0 : w.kx + 1;
+    const float dz = at(r.direction, w.kz);
+    if (dz < 0) std::swap(w.kx, w.ky);  // keeps the winding's sign
+    w.Sx = at(r.direction, w.kx) / dz;
+    w.Sy = at(r.direction, w.ky) / dz;
+    w.Sz = 1.0f / dz;
+    w.ox = at(r.origin, w.kx);
+    w.oy = at(r.origin, w.ky);
+    w.oz = at(r.origin, w.kz);
+    return w;
+}
 
 /// Watertight ray–triangle test: hit in (t_min, t_max) at t with barycentrics b1, b2 of p1,
 /// p2. Rays through an edge or vertex shared by several triangles (same float vertices) hit
