@@ -10,8 +10,8 @@
 //     float t_max = inf;
 //     bvh.nearest(ray, 0.0f, t_max, box_tests, [&](uint32_t i, float& t_max) {
 //         /* test primitive bvh.order()[i]; on a hit at t < t_max, set t_max = t */ });
-// The scene's BVH (geometry/scene.h, a Bvh8) keeps its primitives in leaf order, so slot i is
-// the primitive itself.
+// The scene's BVH (geometry/scene.h, a Bvh8) keeps its primitives in blocks of four, leaf by
+// leaf (geometry/prim_block.h), so slot i is lane i % 4 of block i / 4.
 #pragma once
 
 #include <cstdint>
