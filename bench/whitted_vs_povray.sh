@@ -153,8 +153,9 @@ def pov_count(text, name):
     m = re.search(r"^" + name + r":\s+([0-9]+)", text, re.M)
     return int(m.group(1)) if m else 0
 
-sizes = [(800, 600, int(os.environ["RUNS_SMALL"]), 3.0, 1.0),
-         (3200, 2400, int(os.environ["RUNS_LARGE"]), 5.0, 5.3)]
+# the targets: whole-process ratios to reach (the speed issue: 12x at 800x600, 8x at 3200x2400)
+sizes = [(800, 600, int(os.environ["RUNS_SMALL"]), 12.0, 1.0),
+         (3200, 2400, int(os.environ["RUNS_LARGE"]), 8.0, 5.3)]
 results = []
 for w, h, n, target, _ in sizes:
     luz_argv = [luz, "render", "demo:whitted", "--width", str(w), "--height", str(h),
