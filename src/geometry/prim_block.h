@@ -24,7 +24,6 @@ struct alignas(16) PrimBlock {
     uint32_t shape[kLanes];
     uint32_t triangle[kLanes];
 
-    bool is_triangle(int k) const { return triangle[k] != kNotTriangle; }
     Vec3 corner(int c, int k) const { return {v[c][0][k], v[c][1][k], v[c][2][k]}; }
     /// Lanes holding triangles (bit k for lane k).
     unsigned triangle_lanes() const {

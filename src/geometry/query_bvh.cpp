@@ -13,11 +13,10 @@ bool nearest_hit_bvh(const BuiltScene& scene, const Ray& r, float t_min, float t
     float limit = best.t;
     scene.bvh.nearest_leaves(
         r, t_min, limit, counters.bounds, [&](uint32_t first, uint32_t count, float& node_limit) {
-            const PrimBlock* b = &scene.bvh_blocks[first / PrimBlock::kLanes];
-            for (uint32_t left = count;; left -= PrimBlock::kLanes, ++b) {
-                offer_block(scene, *b, block_lanes(left), r, w, t_min, best, counters);
-                if (left <= PrimBlock::kLanes) break;
-            }
+            for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned lanes) {
+                offer_block(scene, b, lanes, r, w, t_min, best, counters);
+                return true;
+            });
             node_limit = best.t;
         });
     if (best.found) hit = best.hit;
@@ -33,13 +32,10 @@ float transmittance_bvh(const BuiltScene& scene, const Materials& materials, con
     const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
     const bool blocked =
         scene.bvh.any_leaves(r, t_min, t_max, counters.bounds, [&](uint32_t first, uint32_t count) {
-            const PrimBlock* b = &scene.bvh_blocks[first / PrimBlock::kLanes];
-            for (uint32_t left = count;; left -= PrimBlock::kLanes, ++b) {
-                if (!cross_block(scene, materials, *b, block_lanes(left), r, w, t_min, t_max,
-                                 crossings, counters))
-                    return true;
-                if (left <= PrimBlock::kLanes) return false;
-            }
+            return !for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned lanes) {
+                return cross_block(scene, materials, b, lanes, r, w, t_min, t_max, crossings,
+                                   counters);
+            });
         });
     return blocked ? 0.0f : crossings.product();
 }

@@ -82,11 +82,10 @@ void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_m
     const auto one_ray_at_a_time = [&](uint32_t first, uint32_t count, unsigned active) {
         for (; active != 0; active &= active - 1) {
             const int k = __builtin_ctz(active);
-            const PrimBlock* b = &scene.bvh_blocks[first / PrimBlock::kLanes];
-            for (uint32_t left = count;; left -= PrimBlock::kLanes, ++b) {
-                offer_block(scene, *b, block_lanes(left), rays[k], w[k], t_min, best[k], counters);
-                if (left <= PrimBlock::kLanes) break;
-            }
+            for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned lanes) {
+                offer_block(scene, b, lanes, rays[k], w[k], t_min, best[k], counters);
+                return true;
+            });
             update(k);
         }
     };

@@ -64,40 +64,61 @@ inline void offer_triangle(const WatertightRay& w, const Vec3& p0, const Vec3& p
     }
 }
 
-/// Lanes `lanes` of BVH block b against r (w: r prepared for the watertight test): its
-/// triangles four at a time (intersect_triangles4(), the rare double path one by one), its
-/// shapes one by one. Inlined: it is the inner loop of every mesh.
+/// The watertight test of the triangles among lanes `lanes` of BVH block b, four at a time
+/// (intersect_triangles4(); counted in counters): the lanes that hit in (t_min, t_max) at t
+/// with barycentrics b1, b2; those to test one by one by the double path (`scalar`); and the
+/// lanes that hold shapes, for the caller to test.
+struct BlockTest {
+    Lane4f t, b1, b2;
+    unsigned hit = 0, scalar = 0, shapes = 0;
+};
+[[gnu::always_inline]] inline BlockTest test_block(const PrimBlock& b, unsigned lanes,
+                                                   const WatertightRay& w, float t_min, float t_max,
+                                                   IntersectCounters& counters) {
+    BlockTest r;
+    const unsigned triangles = b.triangle_lanes() & lanes;
+    r.shapes = lanes & ~triangles;
+    if (triangles != 0) {
+        r.hit = intersect_triangles4(w, b, t_min, t_max, r.t, r.b1, r.b2, r.scalar) & triangles;
+        r.scalar &= triangles;
+        counters.primitive += static_cast<uint64_t>(__builtin_popcount(triangles & ~r.scalar));
+    }
+    return r;
+}
+
+/// visit(block, lanes) for each block of the leaf of slots first … first + count − 1, with the
+/// lanes the leaf uses, until it returns false; whether every block was visited.
+template <class Visit>
+[[gnu::always_inline]] inline bool for_each_block(const BuiltScene& scene, uint32_t first,
+                                                  uint32_t count, Visit&& visit) {
+    constexpr uint32_t L = PrimBlock::kLanes;
+    const PrimBlock* b = &scene.bvh_blocks[first / L];
+    for (uint32_t left = count;; left -= L, ++b) {
+        if (!visit(*b, left >= L ? (1u << L) - 1 : (1u << left) - 1)) return false;
+        if (left <= L) return true;
+    }
+}
+
+/// Lanes `lanes` of BVH block b against r (w: r prepared for the watertight test), by Best.
+/// Inlined: it is the inner loop of every mesh.
 [[gnu::always_inline]] inline void offer_block(const BuiltScene& scene, const PrimBlock& b,
                                                unsigned lanes, const Ray& r, const WatertightRay& w,
                                                float t_min, Best& best,
                                                IntersectCounters& counters) {
-    const unsigned triangles = b.triangle_lanes() & lanes;
-    if (triangles != 0) {
-        Lane4f t, b1, b2;
-        unsigned scalar;
-        unsigned hit = intersect_triangles4(w, b, t_min, best.limit(), t, b1, b2, scalar);
-        scalar &= triangles;
-        hit &= triangles;
-        counters.primitive += static_cast<uint64_t>(__builtin_popcount(triangles & ~scalar));
-        for (; hit != 0; hit &= hit - 1) {
-            const int k = __builtin_ctz(hit);
-            if (best.better(t[k], b.shape[k], b.triangle[k]))
-                best.take(t[k], b.shape[k], b.triangle[k], b1[k], b2[k],
-                          static_cast<int>(b.triangle[k]));
-        }
-        for (; scalar != 0; scalar &= scalar - 1) {
-            const int k = __builtin_ctz(scalar);
-            offer_triangle(w, b.corner(0, k), b.corner(1, k), b.corner(2, k), b.shape[k],
-                           b.triangle[k], t_min, best, counters);
-        }
+    const BlockTest test = test_block(b, lanes, w, t_min, best.limit(), counters);
+    for (unsigned hit = test.hit; hit != 0; hit &= hit - 1) {
+        const int k = __builtin_ctz(hit);
+        if (best.better(test.t[k], b.shape[k], b.triangle[k]))
+            best.take(test.t[k], b.shape[k], b.triangle[k], test.b1[k], test.b2[k],
+                      static_cast<int>(b.triangle[k]));
     }
-    for (unsigned s = lanes & ~triangles; s != 0; s &= s - 1)
+    for (unsigned one = test.scalar; one != 0; one &= one - 1) {
+        const int k = __builtin_ctz(one);
+        offer_triangle(w, b.corner(0, k), b.corner(1, k), b.corner(2, k), b.shape[k], b.triangle[k],
+                       t_min, best, counters);
+    }
+    for (unsigned s = test.shapes; s != 0; s &= s - 1)
         offer_shape(scene, b.shape[__builtin_ctz(s)], r, t_min, best, counters);
-}
-
-/// The lanes of the block at `left` primitives from a leaf's end: all four, or the first left.
-inline unsigned block_lanes(uint32_t left) {
-    return left >= PrimBlock::kLanes ? (1u << PrimBlock::kLanes) - 1 : (1u << left) - 1;
 }
 
 /// Transparent crossings counted per material; their product is taken in material order.
@@ -179,27 +200,19 @@ inline bool cross_triangle(const BuiltScene& scene, const Materials& materials,
                                                const PrimBlock& b, unsigned lanes, const Ray& r,
                                                const WatertightRay& w, float t_min, float t_max,
                                                Crossings& crossings, IntersectCounters& counters) {
-    const unsigned triangles = b.triangle_lanes() & lanes;
-    if (triangles != 0) {
-        Lane4f t, b1, b2;
-        unsigned scalar;
-        unsigned hit = intersect_triangles4(w, b, t_min, t_max, t, b1, b2, scalar);
-        scalar &= triangles;
-        hit &= triangles;
-        counters.primitive += static_cast<uint64_t>(__builtin_popcount(triangles & ~scalar));
-        for (; hit != 0; hit &= hit - 1) {
-            const int k = __builtin_ctz(hit);
-            const int material = scene.shapes[b.shape[k]].mesh->materials[b.triangle[k]];
-            if (!add_crossings(materials, material, 1, crossings)) return false;
-        }
-        for (; scalar != 0; scalar &= scalar - 1) {
-            const int k = __builtin_ctz(scalar);
-            if (!cross_triangle(scene, materials, w, b.corner(0, k), b.corner(1, k), b.corner(2, k),
-                                b.shape[k], b.triangle[k], t_min, t_max, crossings, counters))
-                return false;
-        }
+    const BlockTest test = test_block(b, lanes, w, t_min, t_max, counters);
+    for (unsigned hit = test.hit; hit != 0; hit &= hit - 1) {
+        const int k = __builtin_ctz(hit);
+        const int material = scene.shapes[b.shape[k]].mesh->materials[b.triangle[k]];
+        if (!add_crossings(materials, material, 1, crossings)) return false;
     }
-    for (unsigned s = lanes & ~triangles; s != 0; s &= s - 1) {
+    for (unsigned one = test.scalar; one != 0; one &= one - 1) {
+        const int k = __builtin_ctz(one);
+        if (!cross_triangle(scene, materials, w, b.corner(0, k), b.corner(1, k), b.corner(2, k),
+                            b.shape[k], b.triangle[k], t_min, t_max, crossings, counters))
+            return false;
+    }
+    for (unsigned s = test.shapes; s != 0; s &= s - 1) {
         if (!cross_shape(scene, materials, b.shape[__builtin_ctz(s)], r, t_min, t_max, crossings,
                          counters))
             return false;

@@ -613,7 +613,7 @@ TEST(Bvh, SceneLeavesStartBlocksAndHoldEachPrimitiveOnce) {
             for (uint32_t slot = first + count; slot < first + 4 * blocks; ++slot) {
                 const PrimBlock& b = scene.bvh_blocks[slot / 4];
                 EXPECT_EQ(b.shape[slot % 4], PrimBlock::kPadding);
-                EXPECT_FALSE(b.is_triangle(slot % 4));
+                EXPECT_FALSE((b.triangle_lanes() >> (slot % 4)) & 1u);
                 EXPECT_TRUE(std::isnan(b.v[0][0][slot % 4]));
             }
         }

@@ -128,8 +128,6 @@ TEST(PrimBlock, TriangleLanesAndPaddingLanes) {
         b.triangle[k] = k == 2 ? PrimBlock::kNotTriangle : static_cast<uint32_t>(k);
     }
     EXPECT_EQ(b.triangle_lanes(), 0b1011u);
-    EXPECT_FALSE(b.is_triangle(2));
-    EXPECT_TRUE(b.is_triangle(3));
 }
 
 }  // namespace
