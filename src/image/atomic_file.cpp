@@ -2,11 +2,14 @@
 #include "image/atomic_file.h"
 
 #include <fcntl.h>
+#include <sys/uio.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <climits>
 #include <cstdio>
 #include <random>
 #include <system_error>
@@ -38,25 +41,45 @@ uint64_t random_suffix() {
     return z ^ (z >> 31);
 }
 
-/// Writes all of `bytes` to `fd`; false with errno set on failure.
-bool write_all(int fd, const std::string& bytes) {
-    const char* p = bytes.data();
-    size_t left = bytes.size();
-    while (left > 0) {
-        const ssize_t n = ::write(fd, p, left);
+/// Writes all of `pieces` to `fd`, one after the other, with as few system calls as the
+/// kernel allows (writev, IOV_MAX pieces at a time); false with errno set on failure.
+bool write_all(int fd, std::vector<std::string_view> pieces) {
+    size_t first = 0;
+    while (first < pieces.size()) {
+        if (pieces[first].empty()) {
+            ++first;
+            continue;
+        }
+        iovec iov[IOV_MAX];
+        int count = 0;
+        for (size_t k = first; k < pieces.size() && count < IOV_MAX; ++k) {
+            if (pieces[k].empty()) continue;
+            iov[count].iov_base = const_cast<char*>(pieces[k].data());
+            iov[count].iov_len = pieces[k].size();
+            ++count;
+        }
+        ssize_t n = ::writev(fd, iov, count);
         if (n < 0) {
             if (errno == EINTR) continue;
             return false;
         }
-        p += n;
-        left -= static_cast<size_t>(n);
+        // Drop what was written: whole pieces, then the front of a partly written one.
+        while (n > 0) {
+            const size_t take = std::min(static_cast<size_t>(n), pieces[first].size());
+            pieces[first].remove_prefix(take);
+            n -= static_cast<ssize_t>(take);
+            if (pieces[first].empty()) ++first;
+        }
     }
     return true;
 }
 
 }  // namespace
 
-PendingFile::PendingFile(std::string path_in, const std::string& bytes)
+PendingFile::PendingFile(std::string path, const std::string& bytes)
+    : PendingFile(std::move(path), std::vector<std::string_view>{bytes}) {}
+
+PendingFile::PendingFile(std::string path_in, const std::vector<std::string_view>& pieces)
     : path_(std::move(path_in)) {
     const std::string& path = path_;
     const size_t slash = path.find_last_of('/');
@@ -81,7 +104,7 @@ PendingFile::PendingFile(std::string path_in, const std::string& bytes)
 
     // Write, flush to disk, close; any error removes the temporary file.
     int err = 0;
-    if (!write_all(fd, bytes) || ::fsync(fd) != 0) err = errno;
+    if (!write_all(fd, pieces) || ::fsync(fd) != 0) err = errno;
     if (::close(fd) != 0 && err == 0) err = errno;
     if (err != 0) {
         ::unlink(tmp.c_str());

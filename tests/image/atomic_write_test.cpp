@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <random>
 
+#include "image/atomic_file.h"
 #include "image/image_io.h"
 #include "temp_dir.h"
 
@@ -161,6 +162,42 @@ TEST_P(AtomicWrite, RelativePathInTheCurrentDirectory) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, AtomicWrite, ::testing::Values("png", "ppm", "pfm", "exr"));
+
+// A file given in pieces (a checkpoint: numbers and each tile's bytes) is written without
+// first being joined: more pieces than one writev() takes, empty ones among them.
+TEST(PendingFile, PiecesAreWrittenInOrder) {
+    TempDir dir;
+    std::vector<std::string> parts;
+    std::string joined;
+    std::mt19937 rng(11);
+    for (int k = 0; k < 3000; ++k) {
+        std::string part(rng() % 5 == 0 ? 0 : rng() % 700, '\0');
+        for (char& c : part) c = static_cast<char>(rng());
+        joined += part;
+        parts.push_back(std::move(part));
+    }
+    const std::vector<std::string_view> pieces(parts.begin(), parts.end());
+    PendingFile file(dir / "c.ckpt", pieces);
+    EXPECT_EQ(dir.entries().size(), 1u);  // the temporary file, until committed
+    file.commit();
+    EXPECT_EQ(dir.entries(), Names{"c.ckpt"});
+    EXPECT_EQ(slurp(dir / "c.ckpt"), joined);
+}
+
+TEST(PendingFile, PiecesCutByAFullDiskKeepTheExistingFile) {
+    TempDir dir;
+    put_file(dir / "c.ckpt", "old content");
+    const std::string part(300, 'x');
+    try {
+        FileSizeLimit limit(1000);  // the fourth piece is written in part, then no more
+        PendingFile file(dir / "c.ckpt", std::vector<std::string_view>(10, part));
+        ADD_FAILURE() << "no error";
+    } catch (const FileError& e) {
+        EXPECT_EQ(std::string(e.what()), dir / "c.ckpt" + ": cannot write: File too large");
+    }
+    EXPECT_EQ(slurp(dir / "c.ckpt"), "old content");
+    EXPECT_EQ(dir.entries(), Names{"c.ckpt"});
+}
 
 TEST(WriteImage, UnknownExtensionNamesFileAndFormats) {
     TempDir dir;
