@@ -2,6 +2,7 @@
 #include "image/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/uio.h>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include <chrono>
 #include <climits>
 #include <cstdio>
+#include <filesystem>
 #include <random>
 #include <system_error>
 #include <utility>
@@ -20,6 +22,16 @@ namespace {
 
 /// The text of an errno value ("No such file or directory").
 std::string error_text(int err) { return std::error_code(err, std::generic_category()).message(); }
+
+/// The folder part of `path` ("" or ending in '/') and its file name, the name cut to the
+/// length a temporary name can hold under NAME_MAX.
+std::pair<std::string, std::string> split_path(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+    std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+    if (name.size() > 100) name.resize(100);
+    return {dir, name};
+}
 
 /// A 64-bit value that differs between calls and processes, for temporary file names.
 uint64_t random_suffix() {
@@ -82,10 +94,7 @@ PendingFile::PendingFile(std::string path, const std::string& bytes)
 PendingFile::PendingFile(std::string path_in, const std::vector<std::string_view>& pieces)
     : path_(std::move(path_in)) {
     const std::string& path = path_;
-    const size_t slash = path.find_last_of('/');
-    const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
-    std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-    if (name.size() > 100) name.resize(100);  // keep the temporary name under NAME_MAX
+    const auto [dir, name] = split_path(path);
     const auto fail = [&path](int err) {
         throw FileError(path + ": cannot write: " + error_text(err));
     };
@@ -134,6 +143,30 @@ void PendingFile::commit() {
         ::fsync(dir_fd);
         ::close(dir_fd);
     }
+}
+
+size_t remove_stale_temporaries(const std::string& path) {
+    namespace fs = std::filesystem;
+    const auto [dir, name] = split_path(path);
+    const std::string prefix = "." + name + ".tmp.";
+    size_t removed = 0;
+    std::error_code ec;
+    for (fs::directory_iterator it(dir.empty() ? "." : dir, ec), end; !ec && it != end;
+         it.increment(ec)) {
+        const std::string file = it->path().filename().string();
+        if (file.compare(0, prefix.size(), prefix) != 0) continue;
+        // <pid>.<16 hex digits>, as PendingFile names them
+        const std::string rest = file.substr(prefix.size());
+        const size_t dot = rest.find('.');
+        if (dot == std::string::npos || dot == 0 || dot > 9 || rest.size() != dot + 17) continue;
+        if (rest.find_first_not_of("0123456789") != dot) continue;
+        if (rest.find_first_not_of("0123456789abcdef", dot + 1) != std::string::npos) continue;
+        const pid_t pid = static_cast<pid_t>(std::stol(rest.substr(0, dot)));
+        if (pid <= 0 || ::kill(pid, 0) == 0 || errno != ESRCH) continue;  // it may still write
+        std::error_code remove_ec;
+        if (it->is_regular_file(remove_ec) && fs::remove(it->path(), remove_ec)) ++removed;
+    }
+    return removed;
 }
 
 void write_file_atomically(const std::string& path, const std::string& bytes) {

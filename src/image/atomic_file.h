@@ -36,6 +36,12 @@ class PendingFile {
     bool committed_ = false;
 };
 
+/// Removes the temporary files of `path` (`.<name>.tmp.<pid>.<16 hex digits>`) left next to
+/// it by processes of this machine that no longer run: a write cut by SIGKILL (mpirun kills a
+/// run one second after its SIGTERM) or by a power cut. Those of running processes stay.
+/// Returns how many were removed; never throws.
+size_t remove_stale_temporaries(const std::string& path);
+
 /// Writes `bytes` to `path` atomically (a PendingFile committed at once); throws FileError.
 void write_file_atomically(const std::string& path, const std::string& bytes);
 

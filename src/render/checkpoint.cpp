@@ -37,6 +37,9 @@ uint64_t fingerprint(std::string_view text) {
 
 Checkpoint::Checkpoint(std::string path, uint64_t key)
     : path_(std::move(path)), key_(key), last_save_(std::chrono::steady_clock::now()) {
+    // A save cut short by SIGKILL (mpirun's, one second after its SIGTERM) left its temporary
+    // file: the file itself is the last whole save, the temporary file is only in the way.
+    remove_stale_temporaries(path_);
     std::error_code ec;
     if (!std::filesystem::exists(path_, ec)) return;  // a new render
     const auto bad = [&](const std::string& what) {

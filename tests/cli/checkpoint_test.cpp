@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <random>
+#include <set>
 #include <thread>
 
 #include "cli/run_luz.h"
@@ -126,6 +127,21 @@ TEST_F(Checkpoint, DamagedOrForeignFilesAreRefused) {
         EXPECT_EQ(read_file(dir_ / "render.ckpt"), c.bytes) << "left as it was";
         EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png"));
     }
+}
+
+// A save cut by SIGKILL (mpirun kills a run one second after its SIGTERM) leaves a temporary
+// file beside the checkpoint: the next run goes on from the checkpoint and removes it.
+TEST_F(Checkpoint, ATemporaryFileOfAKilledSaveIsRemovedByTheNextRun) {
+    ASSERT_EQ(run_and_interrupt(render_args("out.png", "grid"), dir_, 900), 130);
+    const std::string saved = read_file(dir_ / "render.ckpt");
+    const pid_t dead = fork();
+    if (dead == 0) _exit(0);
+    ASSERT_EQ(waitpid(dead, nullptr, 0), dead);
+    const std::string cut = ".render.ckpt.tmp." + std::to_string(dead) + ".00ff00ff00ff00ff";
+    write_file(dir_ / cut, saved.substr(0, saved.size() / 2));
+    const RunResult r = run_luz(render_args("out.png", "grid"), dir_);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(list_dir(dir_), (std::set<std::string>{"out.png", "stats.json"}));
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <csignal>
 #include <filesystem>
@@ -197,6 +199,31 @@ TEST(PendingFile, PiecesCutByAFullDiskKeepTheExistingFile) {
     }
     EXPECT_EQ(slurp(dir / "c.ckpt"), "old content");
     EXPECT_EQ(dir.entries(), Names{"c.ckpt"});
+}
+
+// A write cut by SIGKILL leaves its temporary file; the next user of the path removes those of
+// processes that no longer run, and leaves those of running ones and every other file.
+TEST(PendingFile, StaleTemporariesOfDeadProcessesAreRemoved) {
+    TempDir dir;
+    const pid_t dead = fork();
+    if (dead == 0) _exit(0);
+    ASSERT_GT(dead, 0);
+    ASSERT_EQ(waitpid(dead, nullptr, 0), dead);
+    const std::string d = std::to_string(dead), alive = std::to_string(getpid());
+    const Names kept = {".c.ckpt.tmp." + alive + ".0123456789abcdef",  // a running process's
+                        ".c.ckpt.tmp." + d + ".0123",                  // not a name we make
+                        ".c.ckpt.tmp.x" + d + ".0123456789abcdef",
+                        ".d.ckpt.tmp." + d + ".0123456789abcdef",  // another file's
+                        "c.ckpt"};
+    for (const std::string& name : kept) put_file(dir / name, "x");
+    put_file(dir / (".c.ckpt.tmp." + d + ".0123456789abcdef"), "cut short");
+    EXPECT_EQ(remove_stale_temporaries(dir / "c.ckpt"), 1u);
+    Names left = dir.entries();
+    Names want = kept;
+    std::sort(left.begin(), left.end());
+    std::sort(want.begin(), want.end());
+    EXPECT_EQ(left, want);
+    EXPECT_EQ(remove_stale_temporaries(dir / "missing/c.ckpt"), 0u);  // no folder: nothing
 }
 
 TEST(WriteImage, UnknownExtensionNamesFileAndFormats) {
