@@ -70,7 +70,7 @@ export LUZ POV_SCENE="$repo/bench/whitted.pov" WORK="$work" RUNS_SMALL=$runs_sma
 launch=(python3 -)
 if ((nice_level != 0)); then launch=(setsid --wait nice -n "$nice_level" python3 -); fi
 "${launch[@]}" <<'EOF'
-import json, os, re, statistics, subprocess, sys, time
+import json, os, re, select, statistics, subprocess, sys, time
 
 luz, scene, work = os.environ["LUZ"], os.environ["POV_SCENE"], os.environ["WORK"]
 threads = int(os.environ["THREADS"])
@@ -121,14 +121,24 @@ def run(argv, out_path):
             b0 = busy_seconds(); t0 = time.perf_counter()
             p = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=err)
             delays = {}
-            while True:  # sample the threads' run delays until the process exits
+            # Sample the threads' run delays every 5 ms until the process exits; the wait for
+            # its exit wakes at once (a pidfd), so that the wall time does not end at the next
+            # 5 ms tick (that added ~2.5 ms on average, 3 % of a 0.08 s run, 0.3 % of POV-Ray's).
+            exited = os.pidfd_open(p.pid) if hasattr(os, "pidfd_open") else None
+            while True:
                 run_delay(p.pid, delays)
-                if os.waitid(os.P_PID, p.pid, os.WEXITED | os.WNOHANG | os.WNOWAIT):
+                if exited is not None:
+                    if select.select([exited], [], [], 0.005)[0]:
+                        break
+                elif os.waitid(os.P_PID, p.pid, os.WEXITED | os.WNOHANG | os.WNOWAIT):
                     break
-                time.sleep(0.005)
+                else:
+                    time.sleep(0.005)
             run_delay(p.pid, delays)
             _, status, ru = os.wait4(p.pid, 0)
             wall = time.perf_counter() - t0; busy = busy_seconds() - b0
+            if exited is not None:
+                os.close(exited)
         text = open(out_path, errors="replace").read()
         if os.waitstatus_to_exitcode(status) != 0:
             sys.exit(f"failed ({os.waitstatus_to_exitcode(status)}): {' '.join(argv)}\n{text}")
