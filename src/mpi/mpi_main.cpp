@@ -7,10 +7,13 @@
 #include <mpi.h>
 
 #include <CLI/CLI.hpp>
+#include <atomic>
+#include <chrono>
 #include <climits>
 #include <csignal>
 #include <cstdio>
 #include <string>
+#include <thread>
 
 #include "app/cli_main.h"
 #include "app/cli_options.h"
@@ -97,7 +100,15 @@ int run_rank0(int argc, char** argv) {
     return status;
 }
 
-/// The frames of `o`, rendered in step with rank 0; nothing is written.
+/// Set by SIGINT and SIGTERM in the processes other than rank 0: their render stops (it is the
+/// render's cancel flag), and nothing else happens (see run_other()).
+std::atomic<bool> g_stop{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+
+extern "C" void on_stop_signal(int) { g_stop.store(true); }
+
+/// The frames of `o`, rendered in step with rank 0 until the run ends or a signal stops this
+/// process; nothing is written.
 void follow_rank0(const RenderArgs& o) {
     const std::vector<Override> overrides = overrides_of(o);
     set_max_text_file_bytes((o.max_memory ? *o.max_memory : default_memory_limit()) / 4);
@@ -106,13 +117,14 @@ void follow_rank0(const RenderArgs& o) {
     const FrameRange range = o.frames ? parse_frames(*o.frames, animation) : FrameRange{};
     RenderOptions options;
     options.control.threads = o.threads;
+    options.control.cancel = &g_stop;
     options.want_aa_mask = !o.aa_mask_file.empty();
     if (!o.aovs.empty()) options.aovs = parse_aov_list(o.aovs, "--aov " + o.aovs);
     if (o.region) options.region = parse_region(*o.region, first.image);
     Scene scene;
     SceneDesc built_from;
     int passes = 0;
-    for (int f = range.first; f < range.end; ++f) {
+    for (int f = range.first; f < range.end && !g_stop.load(); ++f) {
         const SceneDesc desc = f == 0 ? first : animation.frame(f);
         if (!scene || needs_rebuild(built_from, desc)) {
             scene = build(desc);
@@ -125,10 +137,15 @@ void follow_rank0(const RenderArgs& o) {
 int run_other(int argc, char** argv, int rank, int size) {
     // Interruption is rank 0's to decide: it keeps its --checkpoint, says "interrupted" and
     // ends the run (MPI_Abort), and mpirun then kills the others. mpirun signals every
-    // process at once (SIGINT to mpirun, or ending a failed run): here a signal is ignored,
-    // so that no process ends before rank 0 has kept what is done, or prints anything.
-    std::signal(SIGINT, SIG_IGN);
-    std::signal(SIGTERM, SIG_IGN);
+    // process at once (SIGINT to mpirun, or ending a failed run), and kills them one second
+    // later: here a signal only stops the render, silently, so that rank 0 has both cores
+    // for keeping what is done, and no process ends before it or prints anything.
+    struct sigaction sa {};
+    sa.sa_handler = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART;
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
     const std::string who = "luz: process " + std::to_string(rank) + " of " + std::to_string(size);
     SceneBundle bundle;
     try {
@@ -146,6 +163,14 @@ int run_other(int argc, char** argv, int rank, int size) {
         app.require_subcommand(1);
         app.parse(argc, argv);
         follow_rank0(o);
+        if (g_stop.load()) {
+            // Stopped by a signal: rank 0 ends the run (MPI_Abort) once it has kept what is
+            // done. Had only this process been signalled, it ends the run itself, later.
+            const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+            while (std::chrono::steady_clock::now() < deadline)
+                std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            MPI_Abort(MPI_COMM_WORLD, 1);
+        }
         return 0;
     } catch (const std::exception& e) {
         // Rank 0 read the same scene without error: what this process got differs.

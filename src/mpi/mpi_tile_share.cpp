@@ -30,6 +30,15 @@ struct Backoff {
     void busy() { us = 0; }
 };
 
+/// Buffers of broadcasts abandoned by a cancelled wait: the others may still be copying from
+/// them (Open MPI's shared memory reads a large message out of the sender's memory), so they
+/// stay until the process ends, which it does soon (the run is interrupted). Freed at once, the
+/// others' reads would fail and print "Read -1, expected …, errno = 14" after luz's message.
+std::vector<std::string>& abandoned_buffers() {
+    static std::vector<std::string> buffers;
+    return buffers;
+}
+
 }  // namespace
 
 MpiTileShare::MpiTileShare(MPI_Comm comm, int pass_base) : comm_(comm), pass_base_(pass_base) {
@@ -251,7 +260,10 @@ void MpiTileShare::serve() {
         // A large message needs its sender's help to arrive: wait without blocking on it.
         MPI_Request r;
         MPI_Imrecv(message.data(), n, MPI_BYTE, &handle, &r);
-        if (!wait(r)) return;
+        if (!wait(r)) {
+            abandoned_buffers().push_back(std::move(message));  // may still be written
+            return;
+        }
         ++wire_.messages;
         if (message.size() < 8)
             throw WireError("a message from process " + std::to_string(status.MPI_SOURCE) +
@@ -269,11 +281,21 @@ void MpiTileShare::serve() {
         const size_t batch =
             std::clamp<size_t>(left / (2 * static_cast<size_t>(size_)), 1, kMaxBatch);
         const size_t first = next_free_.fetch_add(batch);
-        uint64_t reply[1 + kMaxBatch] = {0};
-        for (size_t k = first; k < first + batch && k < total; ++k)
-            reply[1 + reply[0]++] = to_render_[k];
-        MPI_Send(reply, static_cast<int>((1 + reply[0]) * sizeof(uint64_t)), MPI_BYTE,
-                 status.MPI_SOURCE, reply_tag(), comm_);
+        std::string reply;
+        put_u64(reply, 0);
+        uint64_t count = 0;
+        for (size_t k = first; k < first + batch && k < total; ++k, ++count)
+            put_u64(reply, to_render_[k]);
+        std::memcpy(reply.data(), &count, sizeof count);
+        // Not MPI_Send: a process stopped by a signal no longer takes its replies in, and a
+        // blocking send would keep rank 0 from keeping what is done before mpirun kills it.
+        MPI_Request sent;
+        MPI_Isend(reply.data(), static_cast<int>(reply.size()), MPI_BYTE, status.MPI_SOURCE,
+                  reply_tag(), comm_, &sent);
+        if (!wait(sent)) {
+            abandoned_buffers().push_back(std::move(reply));  // may still be read
+            return;
+        }
         ++wire_.messages;
     }
 }
@@ -294,7 +316,10 @@ std::vector<std::pair<size_t, std::string>> MpiTileShare::end_pass() {
         for (uint64_t at = 0; at < size; at += 1u << 30) {
             const int n = static_cast<int>(std::min<uint64_t>(size - at, 1u << 30));
             MPI_Ibcast(all.data() + at, n, MPI_BYTE, 0, comm_, &r);
-            if (!wait(r)) return false;
+            if (!wait(r)) {
+                abandoned_buffers().push_back(std::move(all));  // still being read
+                return false;
+            }
         }
         wire_.broadcast_bytes += size;
         return true;

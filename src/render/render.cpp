@@ -32,7 +32,15 @@ Image render(const BuiltScene& scene, const Settings& settings, const RenderCont
             out = Image(img.width, img.height, Unwritten{});
             render_ray_traced(scene, settings, control, out, stats);
             if (control.cancel && control.cancel->load()) {  // incomplete: no unwritten pixel
-                std::fill(out.pixels.begin(), out.pixels.end(), img.background);
+                // On every core, whatever the render's thread count: most of these pages are
+                // touched for the first time here (0.15 s a core for 92 MB), and an interrupted
+                // render has a second to keep its checkpoint before mpirun kills it.
+                const size_t rows = static_cast<size_t>(img.height);
+                parallel_items(0, rows, [&](size_t y) {
+                    const auto row =
+                        out.pixels.begin() + static_cast<std::ptrdiff_t>(y * img.width);
+                    std::fill(row, row + img.width, img.background);
+                });
             }
             stats.triangles += scene.mesh_triangles;  // raytrace: triangles in meshes (SPEC §3)
             break;

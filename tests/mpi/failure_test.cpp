@@ -36,7 +36,8 @@ class ProcessFailure : public MpiTest {
     }
 
     /// Starts the slow render under 3 processes; returns once the three luz-mpi processes run
-    /// and have been rendering for a moment.
+    /// and have been rendering for a moment: together they have used 1.5 s of CPU (a fixed
+    /// wait may end before the render starts on a loaded machine).
     void start_slow_render(const std::vector<std::string>& args = kSlowRender) {
         const fs::path err = dir_.parent_path() / (dir_.filename().string() + ".err");
         run_ = start_mpirun(3, args, dir_, err);
@@ -49,7 +50,14 @@ class ProcessFailure : public MpiTest {
         }
         pids_ = luz_mpi_processes(dir_);
         ASSERT_EQ(pids_.size(), 3u);
-        std::this_thread::sleep_for(std::chrono::milliseconds(800));  // the render under way
+        for (;;) {  // the render under way
+            double used = 0;
+            for (const pid_t p : pids_) used += cpu_seconds(p);
+            if (used >= 1.5) break;
+            ASSERT_EQ(wait_for_exit(run_.pid, 0), -1) << "mpirun ended early: " << err_text();
+            ASSERT_LT(Clock::now(), deadline) << "the render did not get under way";
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
         ASSERT_EQ(wait_for_exit(run_.pid, 0), -1) << "mpirun ended early: " << err_text();
     }
 

@@ -119,6 +119,21 @@ int mpi_rank_of(pid_t pid) {
     return -1;
 }
 
+double cpu_seconds(pid_t pid) {
+    // "PID (COMM) STATE PPID …": utime and stime are the 12th and 13th fields after COMM.
+    const std::string stat = read_file("/proc/" + std::to_string(pid) + "/stat");
+    const size_t paren = stat.rfind(')');
+    if (paren == std::string::npos) return 0.0;
+    std::istringstream in(stat.substr(paren + 2));
+    std::string field;
+    unsigned long long utime = 0, stime = 0;
+    for (int k = 1; k <= 13 && in >> field; ++k) {
+        if (k == 12) utime = std::stoull(field);
+        if (k == 13) stime = std::stoull(field);
+    }
+    return static_cast<double>(utime + stime) / static_cast<double>(::sysconf(_SC_CLK_TCK));
+}
+
 int count_lines_containing(const std::string& text, const std::string& needle) {
     std::istringstream in(text);
     int n = 0;

@@ -49,6 +49,9 @@ std::vector<pid_t> luz_mpi_processes(const std::filesystem::path& cwd);
 /// OMPI_COMM_WORLD_RANK of process `pid` (from /proc/PID/environ), or -1.
 int mpi_rank_of(pid_t pid);
 
+/// CPU seconds (user + system) process `pid` has used so far (/proc/PID/stat), or 0.
+double cpu_seconds(pid_t pid);
+
 /// Number of lines of `text` that contain `needle`.
 int count_lines_containing(const std::string& text, const std::string& needle);
 
