@@ -28,14 +28,16 @@ extern "C" void on_signal(int sig) {
 
 }  // namespace
 
-void install_interrupt_handlers() {
+void install_stop_handler(void (*handler)(int)) {
     struct sigaction sa {};
-    sa.sa_handler = on_signal;
+    sa.sa_handler = handler;
     sigemptyset(&sa.sa_mask);
     sa.sa_flags = SA_RESTART;
     sigaction(SIGINT, &sa, nullptr);
     sigaction(SIGTERM, &sa, nullptr);
 }
+
+void install_interrupt_handlers() { install_stop_handler(on_signal); }
 
 void set_interrupt_exits_now(bool exit_now) {
     g_exit_now.store(exit_now);

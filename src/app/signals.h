@@ -12,6 +12,10 @@ namespace luz {
 /// signal always ends the process at once.
 void install_interrupt_handlers();
 
+/// Installs `handler` (async-signal-safe) for SIGINT and SIGTERM, with SA_RESTART: what
+/// install_interrupt_handlers() does with luz's own handler.
+void install_stop_handler(void (*handler)(int));
+
 /// Chooses between ending at once and only setting the flag (see above).
 void set_interrupt_exits_now(bool exit_now);
 

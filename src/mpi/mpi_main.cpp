@@ -140,12 +140,7 @@ int run_other(int argc, char** argv, int rank, int size) {
     // process at once (SIGINT to mpirun, or ending a failed run), and kills them one second
     // later: here a signal only stops the render, silently, so that rank 0 has both cores
     // for keeping what is done, and no process ends before it or prints anything.
-    struct sigaction sa {};
-    sa.sa_handler = on_stop_signal;
-    sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESTART;
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGTERM, &sa, nullptr);
+    install_stop_handler(on_stop_signal);
     const std::string who = "luz: process " + std::to_string(rank) + " of " + std::to_string(size);
     SceneBundle bundle;
     try {
