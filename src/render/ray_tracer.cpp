@@ -281,27 +281,36 @@ void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& 
         Hit hits[kMaxPacket];
         bool found[kMaxPacket] = {};
         for (int k = 0; k < m; ++k) camera_rays[k] = camera_.ray(px[first + k], py[first + k]);
-        // Timed as sample() times: a packet holding a kTimedSampleEvery-th sample, whole.
+        // Timed as sample() times, every kTimedSampleEvery-th sample whole: the packet's query,
+        // when the packet holds one, is timed and counted for each timed sample by its share
+        // (1/m); the others' rays are not timed (a clock read costs as much as a shadow ray).
         const uint64_t i0 = counters.primary, i1 = i0 + static_cast<uint64_t>(m) - 1;
         const bool timed =
             i0 % kTimedSampleEvery == 0 || i0 / kTimedSampleEvery != i1 / kTimedSampleEvery;
-        const auto start =
-            timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
-        counters.tests.timing = timed;
-        if (!(cancel_ && cancel_->load(std::memory_order_relaxed)))
+        uint64_t packet_ns = 0;
+        if (!(cancel_ && cancel_->load(std::memory_order_relaxed))) {
+            const auto start =
+                timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
             nearest_hits(scene_, camera_rays, m, 0.0f, kInfinity, hits, found, counters.tests);
+            if (timed) packet_ns = nanoseconds_since(start);
+        }
         for (int k = 0; k < m; ++k) {
             const uint64_t before = work_of(counters);
-            ++counters.primary;
+            const bool timed_sample = counters.primary++ % kTimedSampleEvery == 0;
+            const auto start = timed_sample ? std::chrono::steady_clock::now()
+                                            : std::chrono::steady_clock::time_point{};
+            counters.tests.timing = timed_sample;
             const std::pair<bool, Hit> primary{found[k], hits[k]};
             float distance;
             out[first + k] = trace_impl<false>(camera_rays[k], 0, 1.0f, counters, distance, nullptr,
                                                nullptr, &primary);
+            counters.tests.timing = false;
+            if (timed_sample) {
+                const uint64_t share = packet_ns / static_cast<uint64_t>(m);
+                counters.tests.query_ns += share;
+                counters.timed_ns += nanoseconds_since(start) + share;
+            }
             if (rays) rays[first + k] = work_of(counters) - before;
-        }
-        counters.tests.timing = false;
-        if (timed) {
-            counters.timed_ns += nanoseconds_since(start);
         }
     }
 }
