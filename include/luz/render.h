@@ -39,6 +39,10 @@ struct Frame {
     AaMask aa_mask;         ///< which pixels adaptive antialiasing refined (when asked)
     bool complete = false;  ///< false when the render was cancelled (the image is then
                             ///< incomplete: write nothing)
+    /// The image as a PNG file, with `png_encoding`, when RenderOptions::png had it rendered
+    /// straight into one (`image` is then empty, 0 × 0); empty otherwise.
+    std::string png;
+    Encoding png_encoding = Encoding::linear;
 
     /// The per-term image called `name`, or nullptr when it was not asked for.
     const Aov* aov(std::string_view name) const {
@@ -59,6 +63,15 @@ struct RenderOptions {
     /// the whole render (antialiasing and its filters included). render() checks it with
     /// check_region().
     std::optional<PixelRect> region;
+    /// When set, the image is wanted only as a PNG file with this encoding (as the CLI's
+    /// `-o X.png`): render() may then render it band by band into one small buffer and
+    /// compress each band as it is done (render_rows(), PngBands), so that no float image of
+    /// the whole size is made — at 3200×2400 its 92 MB of fresh memory cost ~8 % of a
+    /// Whitted render, on a VM. It does so when renders_in_rows() and nothing else is asked
+    /// (no terms, mask or region): Frame::png then holds the file, the very bytes encode_image()
+    /// gives for the whole image, and Frame::image stays empty. Otherwise the Frame is as
+    /// without this option.
+    std::optional<Encoding> png;
 };
 
 /// Throws SceneError naming `what` (e.g. "--region 0,0,900,10", "region") when `region` is

@@ -32,6 +32,15 @@ void check_output_path(const std::string& path, const char* origin) {
 }
 
 std::string encode_frame(const Frame& frame, const std::string& path, Encoding encoding) {
+    if (!frame.png.empty()) {  // rendered straight into a PNG file (RenderOptions::png)
+        ImageFormat format{};
+        if (format_from_path(path, format) && format == ImageFormat::png &&
+            encoding == frame.png_encoding)
+            return frame.png;
+        throw ImageError(path + ": the frame was rendered straight into a PNG file with " +
+                         (frame.png_encoding == Encoding::srgb ? "sRGB" : "linear") +
+                         " values (RenderOptions::png): it holds no float image to write");
+    }
     return encode_image(path, frame.image, encoding);
 }
 

@@ -2,9 +2,11 @@
 #include "luz/render.h"
 
 #include <algorithm>
+#include <chrono>
 #include <string>
 
 #include "geometry/scene.h"
+#include "image/image_io.h"
 
 namespace luz {
 
@@ -37,6 +39,39 @@ void crop_frame(Frame& frame, const PixelRect& r, RenderStats& stats) {
     stats.height = r.height();
     const int corners[4] = {r.x0, r.y0, r.x1, r.y1};
     std::copy(corners, corners + 4, stats.region);
+}
+
+/// Rows rendered and compressed at a time by render_png(): whole sampler tiles and PNG bands.
+constexpr int kPngRows = 4 * PngBands::kBandRows;
+static_assert(kPngRows % kSamplerTile == 0);
+
+/// The frame as a PNG file, rendered and compressed kPngRows rows at a time into one buffer
+/// (RenderOptions::png); requires renders_in_rows().
+Frame render_png(const BuiltScene& scene, const Settings& settings, const RenderControl& control,
+                 Encoding encoding) {
+    const auto start = std::chrono::steady_clock::now();
+    const int w = settings.image.width, h = settings.image.height;
+    Frame frame;
+    PngBands png(w, h, encoding);
+    Image rows(w, std::min(kPngRows, h), Unwritten{});
+    RenderControl band = control;
+    const auto cancelled = [&] { return control.cancel && control.cancel->load(); };
+    for (int y0 = 0; y0 < h && !cancelled(); y0 += kPngRows) {
+        const int count = std::min(kPngRows, h - y0);
+        if (control.progress) {
+            band.progress = [&, y0, count](double p) { control.progress((y0 + p * count) / h); };
+        }
+        render_rows(scene, settings, band, y0, count, rows, frame.stats);
+        if (!cancelled()) png.add(rows, count);
+    }
+    frame.complete = !cancelled();
+    if (frame.complete) {
+        frame.png = png.finish();
+        frame.png_encoding = encoding;
+    }
+    frame.stats.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return frame;
 }
 
 }  // namespace
@@ -85,6 +120,8 @@ Frame render(const Scene& scene, const Settings& settings, const RenderOptions& 
     RenderControl control = options.control;
     control.region = options.region.value_or(PixelRect{});
     control.aa_mask = options.want_aa_mask ? &frame.aa_mask : nullptr;
+    if (options.png && options.aovs.empty() && renders_in_rows(settings, control))
+        return render_png(scene.built(), settings, control, *options.png);
     // The per-term images asked for, each once, in the order asked; the pipelines fill them.
     TermPlanes planes;
     for (AovKind kind : options.aovs) {

@@ -118,6 +118,13 @@ int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
             scene = build(desc);
             built_from = desc;
         }
+        // A PNG file alone: rendered band by band and compressed as it goes, without a float
+        // image of the whole size (RenderOptions::png; render() decides when it can).
+        ImageFormat format{};
+        const bool png_only = aovs.empty() && o.aa_mask_file.empty() &&
+                              format_from_path(file_of(out, f), format) &&
+                              format == ImageFormat::png;
+        options.png = png_only ? std::optional<Encoding>(desc.image.encoding) : std::nullopt;
         const int done = f - range.first;
         if (bar.enabled()) {
             options.control.progress = [&bar, done, n = range.count()](double p) {
@@ -164,11 +171,11 @@ int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
         if (o.frames) {
             std::printf("wrote %d frames %s … %s (%d\u00d7%d, %s, %.2f s)\n", range.count(),
                         file_of(out, range.first).c_str(), file_of(out, range.end - 1).c_str(),
-                        frame.image.width, frame.image.height, pipeline_name(first.render.pipeline),
+                        frame.stats.width, frame.stats.height, pipeline_name(first.render.pipeline),
                         seconds);
         } else {
-            std::printf("wrote %s (%d\u00d7%d, %s, %.2f s)\n", out.c_str(), frame.image.width,
-                        frame.image.height, pipeline_name(first.render.pipeline), seconds);
+            std::printf("wrote %s (%d\u00d7%d, %s, %.2f s)\n", out.c_str(), frame.stats.width,
+                        frame.stats.height, pipeline_name(first.render.pipeline), seconds);
         }
     }
     return 0;

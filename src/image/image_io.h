@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -53,6 +54,31 @@ std::string encode_image(const std::string& path, const Image& img, Encoding e =
 /// The same with further EXR layers (ignored by the other formats: only .exr holds layers).
 std::string encode_image_layers(const std::string& path, const Image& img,
                                 const std::vector<ExrLayer>& layers, Encoding e = Encoding::linear);
+
+/// A PNG file (8-bit RGB, as encode_image writes it: the very bytes) from rows given band by
+/// band, each quantized and compressed when given (in parallel), so that a render can hand its
+/// rows over as it finishes them and never hold the whole image in float.
+///     PngBands png(w, h, encoding);
+///     png.add(rows, n);  // the next n rows: rows.at(x, r) for r < n, in order
+///     std::string bytes = png.finish();
+/// Every add() but the one giving the last rows takes a multiple of kBandRows rows.
+class PngBands {
+  public:
+    static constexpr int kBandRows = 64;  ///< rows deflated together (any thread count)
+    PngBands(int width, int height, Encoding e);
+    ~PngBands();
+    /// Rows 0 … count − 1 of `rows` (its width is the image's) as the image's next rows;
+    /// throws ImageError when they do not fit.
+    void add(const Image& rows, int count);
+    /// The file's bytes once every row has been given; throws ImageError.
+    std::string finish();
+
+  private:
+    struct Bands;
+    int width_, height_, done_ = 0;
+    Encoding encoding_;
+    std::unique_ptr<Bands> bands_;
+};
 
 /// Writes `img` to `path` in the format its extension names, atomically.
 void write_image(const std::string& path, const Image& img, Encoding e = Encoding::linear);

@@ -1,4 +1,5 @@
-// PNG codec with libpng: writes 8-bit RGB (image data deflated in parallel bands with zlib),
+// PNG codec with libpng: writes 8-bit RGB (image data deflated in parallel bands with zlib, whole
+// or band by band as a render gives them: PngBands),
 // reads any PNG (8/16-bit, grey, palette, alpha).
 // libpng reports errors by longjmp: every setjmp lives in a small function without C++ objects.
 
@@ -60,86 +61,66 @@ void read_bytes(png_structp png, png_bytep data, size_t n) {
     ctx.pos += n;
 }
 
-/// The PNG image data (what the IDAT chunks carry): one zlib stream of the image's rows,
-/// quantized by encode_8bit and each prefixed by filter type 1 (Sub: every byte minus the one
-/// 3 to its left), deflated at level 3 in independent bands of kBandRows rows, in parallel.
-/// Every band but the last ends with a sync flush (on a byte boundary), so the bands joined
-/// make one deflate stream (as pigz does); the Adler-32 of the whole is combined from the
-/// bands'. The bytes depend only on the image, not on the number of threads. Each band is
-/// quantized and filtered in a per-thread buffer, and only its compressed bytes are kept.
-/// Empty on failure (zlib out of memory).
-std::string deflate_rows(const Image& img, Encoding e) {
-    constexpr int kBandRows = 64;
-    constexpr int kLevel = 3;
-    const int height = img.height;
-    const size_t row_size = static_cast<size_t>(img.width) * 3;
-    const int bands = (height + kBandRows - 1) / kBandRows;
-    struct Band {
-        std::unique_ptr<Bytef[]> bytes;  // compressed; uninitialised beyond `size`
-        size_t size = 0;
-        uLong adler = 1;
-        size_t length = 0;  // filtered bytes
-        bool ok = false;
-    };
-    std::vector<Band> out(static_cast<size_t>(bands));
-    tbb::parallel_for(0, bands, [&](int b) {
-        const int y0 = b * kBandRows, y1 = std::min(height, y0 + kBandRows);
-        // Reused by the thread's bands and kept until it ends (~(64 + 1)·3·width bytes).
-        thread_local std::vector<Bytef> filtered, line;
-        filtered.resize(static_cast<size_t>(y1 - y0) * (row_size + 1));
-        line.resize(row_size);
-        Bytef* f = filtered.data();
-        for (int y = y0; y < y1; ++y) {
-            const Rgb* px = &img.at(0, y);
-            for (int x = 0; x < img.width; ++x) {
-                line[3 * x + 0] = encode_8bit(px[x].x, e);
-                line[3 * x + 1] = encode_8bit(px[x].y, e);
-                line[3 * x + 2] = encode_8bit(px[x].z, e);
-            }
-            *f++ = 1;  // Sub
-            for (size_t k = 0; k < row_size; ++k) {
-                *f++ = static_cast<Bytef>(line[k] - (k >= 3 ? line[k - 3] : 0));
-            }
-        }
-        Band& band = out[static_cast<size_t>(b)];
-        band.length = filtered.size();
-        band.adler = adler32(1, filtered.data(), static_cast<uInt>(filtered.size()));
-        z_stream z{};
-        if (deflateInit2(&z, kLevel, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) return;
-        const size_t bound = deflateBound(&z, static_cast<uLong>(filtered.size())) + 16;
-        band.bytes.reset(new (std::nothrow) Bytef[bound]);
-        if (!band.bytes) {
-            deflateEnd(&z);
-            return;
-        }
-        z.next_in = filtered.data();
-        z.avail_in = static_cast<uInt>(filtered.size());
-        z.next_out = band.bytes.get();
-        z.avail_out = static_cast<uInt>(bound);
-        const int flush = b + 1 == bands ? Z_FINISH : Z_SYNC_FLUSH;
-        const int status = deflate(&z, flush);
-        band.ok = flush == Z_FINISH ? status == Z_STREAM_END : status == Z_OK && z.avail_in == 0;
-        band.size = bound - z.avail_out;
-        deflateEnd(&z);
-    });
-    // zlib header: deflate, 32 KiB window, FLEVEL 1 (levels 2–5), FCHECK making it a multiple
-    // of 31; then the bands; then the Adler-32 of all filtered bytes, big-endian.
-    size_t total = 2 + 4;
-    for (const Band& band : out) total += band.size;
-    std::string stream = {'\x78', '\x5E'};
-    stream.reserve(total);
+/// Rows per band of the PNG image data (PngBands::kBandRows).
+constexpr int kBandRows = PngBands::kBandRows;
+
+/// One band of the PNG image data (PngBands): its rows quantized by encode_8bit, each
+/// prefixed by filter type 1 (Sub: every byte minus the one 3 to its left), deflated at level 3
+/// on its own; every band but the image's last ends with a sync flush (on a byte boundary), so
+/// the bands joined make one deflate stream (as pigz does). The Adler-32 of the whole is
+/// combined from the bands'. Quantized and filtered in a per-thread buffer: only the
+/// compressed bytes are kept. `ok` false on failure (zlib out of memory).
+struct PngBand {
+    std::unique_ptr<Bytef[]> bytes;  // compressed; uninitialised beyond `size`
+    size_t size = 0;
     uLong adler = 1;
-    for (const Band& band : out) {
-        if (!band.ok) return {};
-        stream.append(reinterpret_cast<const char*>(band.bytes.get()), band.size);
-        adler = adler32_combine(adler, band.adler, static_cast<z_off_t>(band.length));
+    size_t length = 0;  // filtered bytes
+    bool ok = false;
+};
+
+/// Band `band` from `rows` rows of `img` starting at its row `first`; `last`: the image's last.
+void deflate_band(const Image& img, int first, int rows, bool last, Encoding e, PngBand& band) {
+    constexpr int kLevel = 3;
+    const size_t row_size = static_cast<size_t>(img.width) * 3;
+    // Reused by the thread's bands and kept until it ends (~(64 + 1)·3·width bytes).
+    thread_local std::vector<Bytef> filtered, line;
+    filtered.resize(static_cast<size_t>(rows) * (row_size + 1));
+    line.resize(row_size);
+    Bytef* f = filtered.data();
+    for (int y = first; y < first + rows; ++y) {
+        const Rgb* px = &img.at(0, y);
+        for (int x = 0; x < img.width; ++x) {
+            line[3 * x + 0] = encode_8bit(px[x].x, e);
+            line[3 * x + 1] = encode_8bit(px[x].y, e);
+            line[3 * x + 2] = encode_8bit(px[x].z, e);
+        }
+        *f++ = 1;  // Sub
+        for (size_t k = 0; k < row_size; ++k) {
+            *f++ = static_cast<Bytef>(line[k] - (k >= 3 ? line[k - 3] : 0));
+        }
     }
-    for (int shift = 24; shift >= 0; shift -= 8)
-        stream += static_cast<char>((adler >> shift) & 0xFF);
-    return stream;
+    band.length = filtered.size();
+    band.adler = adler32(1, filtered.data(), static_cast<uInt>(filtered.size()));
+    z_stream z{};
+    if (deflateInit2(&z, kLevel, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) return;
+    const size_t bound = deflateBound(&z, static_cast<uLong>(filtered.size())) + 16;
+    band.bytes.reset(new (std::nothrow) Bytef[bound]);
+    if (!band.bytes) {
+        deflateEnd(&z);
+        return;
+    }
+    z.next_in = filtered.data();
+    z.avail_in = static_cast<uInt>(filtered.size());
+    z.next_out = band.bytes.get();
+    z.avail_out = static_cast<uInt>(bound);
+    const int flush = last ? Z_FINISH : Z_SYNC_FLUSH;
+    const int status = deflate(&z, flush);
+    band.ok = flush == Z_FINISH ? status == Z_STREAM_END : status == Z_OK && z.avail_in == 0;
+    band.size = bound - z.avail_out;
+    deflateEnd(&z);
 }
 
-/// Runs libpng's writer: signature, IHDR (and the sRGB chunks), then `idat` (deflate_rows()) in
+/// Runs libpng's writer: signature, IHDR (and the sRGB chunks), then `idat` (PngBands) in
 /// IDAT chunks of at most 8 MiB, then IEND; false on error (message in ctx).
 bool run_png_writer(PngContext& ctx, png_uint_32 w, png_uint_32 h, const std::string& idat,
                     bool srgb) {
@@ -210,20 +191,64 @@ bool read_png_rows(PngReader& r, png_bytepp rows) {
 
 }  // namespace
 
-std::string encode_png(const Image& img, Encoding e) {
-    // Quantize and compress first: no C++ allocation happens while libpng runs, except in
+struct PngBands::Bands {
+    std::vector<PngBand> list;
+};
+
+PngBands::PngBands(int width, int height, Encoding e)
+    : width_(width), height_(height), encoding_(e), bands_(std::make_unique<Bands>()) {
+    bands_->list.resize(static_cast<size_t>((height + kBandRows - 1) / kBandRows));
+}
+
+PngBands::~PngBands() = default;
+
+void PngBands::add(const Image& rows, int count) {
+    if (rows.width != width_ || count < 0 || count > rows.height || count > height_ - done_ ||
+        (done_ + count < height_ && count % kBandRows != 0)) {
+        throw ImageError("PNG encoding failed: rows given out of order");
+    }
+    const int first_band = done_ / kBandRows, bands = (count + kBandRows - 1) / kBandRows;
+    tbb::parallel_for(0, bands, [&](int b) {
+        const int first = b * kBandRows, n = std::min(kBandRows, count - first);
+        const bool last = done_ + first + n == height_;
+        deflate_band(rows, first, n, last, encoding_, bands_->list[first_band + b]);
+    });
+    done_ += count;
+}
+
+std::string PngBands::finish() {
+    if (done_ != height_) throw ImageError("PNG encoding failed: rows missing");
+    // zlib header: deflate, 32 KiB window, FLEVEL 1 (levels 2–5), FCHECK making it a multiple
+    // of 31; then the bands; then the Adler-32 of all filtered bytes, big-endian. Quantized
+    // and compressed first: no C++ allocation happens while libpng runs, except in
     // write_bytes.
-    const std::string idat = deflate_rows(img, e);
-    if (idat.empty()) throw ImageError("PNG encoding failed: zlib could not compress the image");
+    size_t total = 2 + 4;
+    for (const PngBand& band : bands_->list) total += band.size;
+    std::string idat = {'\x78', '\x5E'};
+    idat.reserve(total);
+    uLong adler = 1;
+    for (const PngBand& band : bands_->list) {
+        if (!band.ok) throw ImageError("PNG encoding failed: zlib could not compress the image");
+        idat.append(reinterpret_cast<const char*>(band.bytes.get()), band.size);
+        adler = adler32_combine(adler, band.adler, static_cast<z_off_t>(band.length));
+    }
+    for (int shift = 24; shift >= 0; shift -= 8) idat += static_cast<char>((adler >> shift) & 0xFF);
+    bands_->list.clear();
     std::string out;
     out.reserve(idat.size() + 1024);
     PngContext ctx;
     ctx.out = &out;
-    if (!run_png_writer(ctx, static_cast<png_uint_32>(img.width),
-                        static_cast<png_uint_32>(img.height), idat, e == Encoding::srgb)) {
+    if (!run_png_writer(ctx, static_cast<png_uint_32>(width_), static_cast<png_uint_32>(height_),
+                        idat, encoding_ == Encoding::srgb)) {
         throw ImageError(std::string("PNG encoding failed: ") + ctx.message);
     }
     return out;
+}
+
+std::string encode_png(const Image& img, Encoding e) {
+    PngBands png(img.width, img.height, e);
+    png.add(img, img.height);
+    return png.finish();
 }
 
 Image decode_png(std::string_view bytes) {

@@ -76,6 +76,15 @@ struct TermPlanes {
 /// and the term planes (TermSample samples).
 inline void put(Image& out, int x, int y, const Rgb& colour) { out.at(x, y) = colour; }
 
+/// Rows of an image kept apart (render_rows()): pixel (x, y) of the image is rows.at(x, y − y0).
+struct ImageRows {
+    Image& rows;
+    int y0;
+};
+inline void put(ImageRows& out, int x, int y, const Rgb& colour) {
+    out.rows.at(x, y - out.y0) = colour;
+}
+
 struct TermOut {
     Image& image;
     const TermPlanes& planes;

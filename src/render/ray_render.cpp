@@ -4,14 +4,22 @@
 #include <algorithm>
 #include <atomic>
 #include <string>
+#include <type_traits>
 
 #include "render/ray_tracer.h"
 #include "render/sampler.h"
 
 namespace luz {
 
-void render_ray_traced(const BuiltScene& scene, const Settings& settings,
-                       const RenderControl& control, Image& out, RenderStats& stats) {
+namespace {
+
+Image& image_of(Image& out) { return out; }
+Image& image_of(ImageRows& out) { return out.rows; }  // not called: ImageRows takes no terms
+
+/// render_ray_traced() into an Image (with the terms when asked) or into ImageRows.
+template <class Out>
+void render_into(const BuiltScene& scene, const Settings& settings, const RenderControl& control,
+                 Out& out, RenderStats& stats) {
     const RayTracer tracer(scene, settings, settings.render.pipeline == Pipeline::raytrace,
                            control.cancel);
     const int w = settings.image.width, h = settings.image.height;
@@ -33,9 +41,10 @@ void render_ray_traced(const BuiltScene& scene, const Settings& settings,
     };
     std::vector<TraceCounters> counters;
     SamplerCounts counts;
-    if (control.terms && control.terms->any()) {  // the colour and its terms (SPEC §1.5)
+    constexpr bool kWhole = std::is_same_v<Out, Image>;     // ImageRows: colour only
+    if (kWhole && control.terms && control.terms->any()) {  // the colour and its terms (§1.5)
         // One sample at a time: each sample's `tests` term counts its own tests.
-        TermOut term_out{out, *control.terms};
+        TermOut term_out{image_of(out), *control.terms};
         counts = sample_image(
             settings.render.antialias, w, h, control,
             [&](float x, float y, TraceCounters& c) {
@@ -81,6 +90,18 @@ void render_ray_traced(const BuiltScene& scene, const Settings& settings,
     }
     stats.samples += counts.samples;  // one primary ray per sample
     stats.pixels_refined += counts.pixels_refined;
+}
+
+}  // namespace
+
+void render_ray_traced(const BuiltScene& scene, const Settings& settings,
+                       const RenderControl& control, Image& out, RenderStats& stats) {
+    render_into(scene, settings, control, out, stats);
+}
+
+void render_ray_traced(const BuiltScene& scene, const Settings& settings,
+                       const RenderControl& control, ImageRows& out, RenderStats& stats) {
+    render_into(scene, settings, control, out, stats);
 }
 
 }  // namespace luz

@@ -120,5 +120,8 @@ class RayTracer {
 /// Renders the scene with the raycast or raytrace pipeline into `out` (ray_render.cpp).
 void render_ray_traced(const BuiltScene& scene, const Settings& settings,
                        const RenderControl& control, Image& out, RenderStats& stats);
+/// The same into rows kept apart (render_rows()): colour only, no terms.
+void render_ray_traced(const BuiltScene& scene, const Settings& settings,
+                       const RenderControl& control, ImageRows& out, RenderStats& stats);
 
 }  // namespace luz

@@ -10,13 +10,31 @@
 
 namespace luz {
 
+namespace {
+
+/// What every render reports of its image and threads.
+void set_image_stats(const Settings& settings, const RenderControl& control, RenderStats& stats) {
+    stats.width = settings.image.width;
+    stats.height = settings.image.height;
+    stats.threads = resolve_threads(control.threads);
+}
+
+/// What a ray-traced render reports of the BVH (only rays use it: a zbuffer render reports
+/// none, even when an earlier ray-traced render of the same scene built one, and never reads it
+/// while another builds it).
+void set_bvh_stats(const BuiltScene& scene, RenderStats& stats) {
+    stats.bvh_nodes = scene.bvh.nodes().size();
+    stats.bvh_build_seconds = scene.bvh_build_seconds;
+    stats.bvh_bytes = scene.bvh_bytes();
+}
+
+}  // namespace
+
 Image render(const BuiltScene& scene, const Settings& settings, const RenderControl& control,
              RenderStats& stats) {
     const auto start = std::chrono::steady_clock::now();
     const ImageDesc& img = settings.image;
-    stats.width = img.width;
-    stats.height = img.height;
-    stats.threads = resolve_threads(control.threads);
+    set_image_stats(settings, control, stats);
     Image out;
     switch (settings.render.pipeline) {
         case Pipeline::zbuffer: {
@@ -45,15 +63,28 @@ Image render(const BuiltScene& scene, const Settings& settings, const RenderCont
             stats.triangles += scene.mesh_triangles;  // raytrace: triangles in meshes (SPEC §3)
             break;
     }
-    if (settings.render.pipeline != Pipeline::zbuffer) {
-        // Only rays use the BVH: a zbuffer render reports none, even when an earlier ray-traced
-        // render of the same scene built one (and never reads it while another builds it).
-        stats.bvh_nodes = scene.bvh.nodes().size();
-        stats.bvh_build_seconds = scene.bvh_build_seconds;
-        stats.bvh_bytes = scene.bvh_bytes();
-    }
+    if (settings.render.pipeline != Pipeline::zbuffer) set_bvh_stats(scene, stats);
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
+}
+
+bool renders_in_rows(const Settings& settings, const RenderControl& control) {
+    const AntialiasDesc& aa = settings.render.antialias;
+    return settings.render.pipeline != Pipeline::zbuffer &&
+           (aa.mode == AaMode::none || (aa.mode == AaMode::grid && aa.filter == AaFilter::box)) &&
+           !(control.terms && control.terms->any()) && !control.aa_mask && !control.checkpoint &&
+           control.region.empty() && !control.share;
+}
+
+void render_rows(const BuiltScene& scene, const Settings& settings, const RenderControl& control,
+                 int y0, int count, Image& rows, RenderStats& stats) {
+    set_image_stats(settings, control, stats);
+    RenderControl band = control;
+    band.region = {0, y0, settings.image.width, y0 + count};
+    ImageRows out{rows, y0};
+    render_ray_traced(scene, settings, band, out, stats);
+    stats.triangles = scene.mesh_triangles;  // as render() reports them
+    set_bvh_stats(scene, stats);
 }
 
 }  // namespace luz

@@ -157,6 +157,14 @@ void read_rect(std::string_view& in, TermOut& o, const PixelRect& r) {
         if (plane) read_rect(in, *plane, r);
 }
 
+void append_rect(std::string& out, const ImageRows& o, const PixelRect& r) {
+    append_rect(out, o.rows, {r.x0, r.y0 - o.y0, r.x1, r.y1 - o.y0});
+}
+
+void read_rect(std::string_view& in, ImageRows& o, const PixelRect& r) {
+    read_rect(in, o.rows, {r.x0, r.y0 - o.y0, r.x1, r.y1 - o.y0});
+}
+
 std::vector<size_t> tile_order(size_t count) {
     std::vector<size_t> order(count);
     for (size_t i = 0; i < count; ++i) order[i] = i;
@@ -217,6 +225,8 @@ template void filter_tile<Rgb, Image>(const GridSpec&, const PixelRect&, const P
                                       const Rgb*, Image&);
 template void filter_tile<TermSample, TermOut>(const GridSpec&, const PixelRect&, const PixelRect&,
                                                const TermSample*, TermOut&);
+template void filter_tile<Rgb, ImageRows>(const GridSpec&, const PixelRect&, const PixelRect&,
+                                          const Rgb*, ImageRows&);
 
 template <class Sample>
 uint32_t AdaptiveCache<Sample>::next_generation() {

@@ -162,6 +162,39 @@ TEST_F(Render, StatsJsonHasEveryKey) {
     EXPECT_EQ(list_dir(dir_), (std::set<std::string>{"x.png", "s.json"}));
 }
 
+// -o X.png renders a ray-traced image band by band into one buffer of rows, compressing each
+// band as it is done: no float image of the whole size is made (36 MB here, 92 MB at
+// 3200×2400), so the process's peak memory stays far below that of -o X.pfm (which holds the
+// float image and its file); the PNG is the one the float image makes.
+TEST_F(Render, RayTracedPngNeedsNoFloatImageOfItsSize) {
+    auto run = [&](const std::string& out) {
+        const RunResult r =
+            run_luz({"render", "demo:whitted", "-o", out, "--width", "2000", "--height", "1500",
+                     "--set", "render.pipeline=\"raycast\"", "--stats", out + ".json"},
+                    dir_);
+        EXPECT_EQ(r.status, 0) << r.err;
+        EXPECT_EQ(r.out.rfind("wrote " + out + " (2000\u00d71500, raycast, ", 0), 0u) << r.out;
+        return nlohmann::json::parse(read_file(dir_ / (out + ".json")));
+    };
+    const nlohmann::json png = run("x.png"), pfm = run("x.pfm");
+    const uint64_t float_image = uint64_t{2000} * 1500 * 12;  // 36 MB; the PNG's rows: 6 MB
+    EXPECT_LT(png["peak_memory_bytes"].get<uint64_t>() + float_image / 2,
+              pfm["peak_memory_bytes"].get<uint64_t>());
+    for (const char* key : {"rays", "intersection_tests", "samples"}) EXPECT_EQ(png[key], pfm[key]);
+    const Image from_png = read_image((dir_ / "x.png").string());
+    const Image from_pfm = read_image((dir_ / "x.pfm").string());
+    ASSERT_EQ(from_png.width, 2000);
+    int off = 0;
+    for (size_t i = 0; i < from_png.pixels.size(); ++i) {
+        const Rgb& f = from_pfm.pixels[i];
+        const Rgb q{encode_8bit(f.x, Encoding::linear) / 255.0f,
+                    encode_8bit(f.y, Encoding::linear) / 255.0f,
+                    encode_8bit(f.z, Encoding::linear) / 255.0f};
+        off += !(q == from_png.pixels[i]);
+    }
+    EXPECT_EQ(off, 0) << "the PNG is the float image's";
+}
+
 TEST_F(Render, DefaultThreadsAreTheCoresTheProcessMayUse) {
     // --threads 0 (the default) is the CPU affinity, which taskset (or mpirun's binding, or a
     // container's cpuset) narrows: one core allowed, one thread.

@@ -5,6 +5,7 @@
 #include <png.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -231,6 +232,29 @@ TEST(ImageStorage, UnwrittenAndFilledImages) {
     for (const Rgb& p : filled.pixels) EXPECT_EQ(p, (Rgb{0.5f, 0.25f, 1.0f}));
     const Image copy = filled;
     EXPECT_TRUE(same_bits(copy, filled));
+}
+
+// PngBands: an image given band by band, through one buffer of rows reused for each, makes the
+// very bytes encode_image() makes of the whole image; rows given out of order are refused.
+TEST(PngBands, BandByBandGivesTheBytesOfTheWholeImage) {
+    const Image img = test_pattern(301, 200);  // bands of 128 rows: 128 + 72
+    for (Encoding e : {Encoding::linear, Encoding::srgb}) {
+        PngBands png(img.width, img.height, e);
+        Image rows(img.width, 128, Rgb{-1.0f});
+        for (int y0 = 0; y0 < img.height; y0 += 128) {
+            const int n = std::min(128, img.height - y0);
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < img.width; ++x) rows.at(x, y) = img.at(x, y0 + y);
+            png.add(rows, n);
+        }
+        EXPECT_EQ(png.finish(), encode_image("x.png", img, e));
+    }
+    PngBands early(301, 200, Encoding::linear);
+    EXPECT_THROW(early.add(img, 100), ImageError);  // not a multiple of 64 rows, not the last
+    early.add(img, 64);
+    EXPECT_THROW(early.finish(), ImageError);       // rows missing
+    EXPECT_THROW(early.add(img, 137), ImageError);  // beyond the image's 200 rows
+    EXPECT_THROW(PngBands(300, 200, Encoding::linear).add(img, 64), ImageError);  // width
 }
 
 }  // namespace

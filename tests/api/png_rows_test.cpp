@@ -1,0 +1,125 @@
+// RenderOptions::png (the CLI's `-o X.png`): a ray-traced image rendered band by band into one
+// buffer of rows and compressed as it goes makes the very PNG bytes, and the very counts, of
+// the whole image rendered and then encoded; renders it cannot band keep their float image.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "image/image_io.h"
+#include "luz/luz.h"
+
+namespace luz {
+namespace {
+
+SceneDesc scene(const std::string& name, int width, int height,
+                std::vector<std::string> sets = {}) {
+    std::vector<Override> o;
+    for (const std::string& s : sets) o.push_back(parse_set(s));
+    o.push_back(parse_set("image.width=" + std::to_string(width)));
+    o.push_back(parse_set("image.height=" + std::to_string(height)));
+    return load_scene(name, o);
+}
+
+void expect_same_counts(const RenderStats& a, const RenderStats& b) {
+    EXPECT_EQ(a.width, b.width);
+    EXPECT_EQ(a.height, b.height);
+    EXPECT_EQ(a.samples, b.samples);
+    EXPECT_EQ(a.rays_primary, b.rays_primary);
+    EXPECT_EQ(a.rays_shadow, b.rays_shadow);
+    EXPECT_EQ(a.rays_reflection, b.rays_reflection);
+    EXPECT_EQ(a.rays_refraction, b.rays_refraction);
+    EXPECT_EQ(a.tests_primitive, b.tests_primitive);
+    EXPECT_EQ(a.tests_bounds, b.tests_bounds);
+    EXPECT_EQ(a.triangles, b.triangles);
+    EXPECT_EQ(a.bvh_nodes, b.bvh_nodes);
+}
+
+struct Case {
+    std::string scene;
+    std::vector<std::string> sets;
+};
+
+// Bands of 256 rows: 600 rows are 256 + 256 + 88; 83 columns are not whole tiles.
+TEST(RenderPng, BandsMakeTheBytesAndCountsOfTheWholeImage) {
+    const Case cases[] = {
+        {"demo:whitted", {}},
+        {"demo:whitted", {"render.antialias.mode=\"grid\"", "render.antialias.samples=4"}},
+        {"demo:whitted",
+         {"render.antialias.mode=\"grid\"", "render.antialias.jitter=true",
+          "image.encoding=\"srgb\""}},
+        {"demo:materials", {"render.pipeline=\"raycast\""}},
+        {"demo:bunny", {}},  // a mesh: the BVH
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.scene + (c.sets.empty() ? "" : " " + c.sets[0]));
+        const SceneDesc d = scene(c.scene, 83, 600, c.sets);
+        const Scene s = build(d);
+        RenderOptions whole_options;
+        whole_options.control.threads = 2;
+        const Frame whole = render(s, d, whole_options);
+        RenderOptions png_options = whole_options;
+        png_options.png = d.image.encoding;
+        const Frame banded = render(s, d, png_options);
+        ASSERT_TRUE(banded.complete);
+        EXPECT_EQ(banded.image.width, 0) << "no float image of the whole size";
+        EXPECT_EQ(banded.png, encode_image("x.png", whole.image, d.image.encoding));
+        EXPECT_EQ(encode_frame(banded, "x.png", d.image.encoding), banded.png);
+        expect_same_counts(banded.stats, whole.stats);
+    }
+}
+
+// Renders that cannot be banded are rendered whole, as without the option: adaptive
+// antialiasing and the tent filter (samples shared across rows), the zbuffer, terms, regions.
+TEST(RenderPng, OtherRendersKeepTheirFloatImage) {
+    const Case cases[] = {
+        {"demo:whitted", {"render.antialias.mode=\"adaptive\""}},
+        {"demo:whitted", {"render.antialias.mode=\"grid\"", "render.antialias.filter=\"tent\""}},
+        {"demo:primitives", {}},  // zbuffer
+    };
+    for (const Case& c : cases) {
+        const SceneDesc d = scene(c.scene, 40, 30, c.sets);
+        RenderOptions o;
+        o.png = Encoding::linear;
+        const Frame f = render(build(d), d, o);
+        EXPECT_TRUE(f.png.empty()) << c.scene;
+        EXPECT_EQ(f.image.width, 40) << c.scene;
+    }
+    const SceneDesc d = scene("demo:whitted", 40, 30);
+    const Scene s = build(d);
+    RenderOptions terms;
+    terms.png = Encoding::linear;
+    terms.aovs = {AovKind::diffuse};
+    EXPECT_TRUE(render(s, d, terms).png.empty());
+    RenderOptions region;
+    region.png = Encoding::linear;
+    region.region = PixelRect{0, 0, 10, 10};
+    EXPECT_EQ(render(s, d, region).image.width, 10);
+}
+
+// A frame rendered straight into a PNG file has no float image for another format or encoding.
+TEST(RenderPng, OtherFormatsOrEncodingsAreRefused) {
+    const SceneDesc d = scene("demo:whitted", 16, 16);
+    RenderOptions o;
+    o.png = Encoding::linear;
+    const Frame f = render(build(d), d, o);
+    ASSERT_FALSE(f.png.empty());
+    EXPECT_THROW(encode_frame(f, "x.pfm", Encoding::linear), ImageError);
+    EXPECT_THROW(encode_frame(f, "x.png", Encoding::srgb), ImageError);
+}
+
+// Cancelled before it starts: incomplete, and no file.
+TEST(RenderPng, CancelledRenderHasNoFile) {
+    const SceneDesc d = scene("demo:whitted", 40, 300);
+    std::atomic<bool> cancel{true};
+    RenderOptions o;
+    o.png = Encoding::linear;
+    o.control.cancel = &cancel;
+    const Frame f = render(build(d), d, o);
+    EXPECT_FALSE(f.complete);
+    EXPECT_TRUE(f.png.empty());
+}
+
+}  // namespace
+}  // namespace luz
