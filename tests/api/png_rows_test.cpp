@@ -41,7 +41,8 @@ struct Case {
     std::vector<std::string> sets;
 };
 
-// Bands of 256 rows: 600 rows are 256 + 256 + 88; 83 columns are not whole tiles.
+// Bands of at most 1024 rows, equal and whole PNG bands: 1500 rows are 768 + 732; 83 columns
+// are not whole tiles.
 TEST(RenderPng, BandsMakeTheBytesAndCountsOfTheWholeImage) {
     const Case cases[] = {
         {"demo:whitted", {}},
@@ -54,7 +55,7 @@ TEST(RenderPng, BandsMakeTheBytesAndCountsOfTheWholeImage) {
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.scene + (c.sets.empty() ? "" : " " + c.sets[0]));
-        const SceneDesc d = scene(c.scene, 83, 600, c.sets);
+        const SceneDesc d = scene(c.scene, 83, 1500, c.sets);
         const Scene s = build(d);
         RenderOptions whole_options;
         whole_options.control.threads = 2;

@@ -164,26 +164,26 @@ TEST_F(Render, StatsJsonHasEveryKey) {
 
 // -o X.png renders a ray-traced image band by band into one buffer of rows, compressing each
 // band as it is done: no float image of the whole size is made (36 MB here, 92 MB at
-// 3200×2400), so the process's peak memory stays far below that of -o X.pfm (which holds the
-// float image and its file); the PNG is the one the float image makes.
+// 3200×2400; here 3 bands of 1024 rows, 12 MB), so the process's peak memory stays far below
+// that of -o X.pfm (which holds the float image); the PNG is the one the float image makes.
 TEST_F(Render, RayTracedPngNeedsNoFloatImageOfItsSize) {
     auto run = [&](const std::string& out) {
         const RunResult r =
-            run_luz({"render", "demo:whitted", "-o", out, "--width", "2000", "--height", "1500",
+            run_luz({"render", "demo:whitted", "-o", out, "--width", "1000", "--height", "3000",
                      "--set", "render.pipeline=\"raycast\"", "--stats", out + ".json"},
                     dir_);
         EXPECT_EQ(r.status, 0) << r.err;
-        EXPECT_EQ(r.out.rfind("wrote " + out + " (2000\u00d71500, raycast, ", 0), 0u) << r.out;
+        EXPECT_EQ(r.out.rfind("wrote " + out + " (1000\u00d73000, raycast, ", 0), 0u) << r.out;
         return nlohmann::json::parse(read_file(dir_ / (out + ".json")));
     };
     const nlohmann::json png = run("x.png"), pfm = run("x.pfm");
-    const uint64_t float_image = uint64_t{2000} * 1500 * 12;  // 36 MB; the PNG's rows: 6 MB
-    EXPECT_LT(png["peak_memory_bytes"].get<uint64_t>() + float_image / 2,
+    const uint64_t float_image = uint64_t{1000} * 3000 * 12;  // 36 MB; the PNG's rows: 12 MB
+    EXPECT_LT(png["peak_memory_bytes"].get<uint64_t>() + float_image / 3,
               pfm["peak_memory_bytes"].get<uint64_t>());
     for (const char* key : {"rays", "intersection_tests", "samples"}) EXPECT_EQ(png[key], pfm[key]);
     const Image from_png = read_image((dir_ / "x.png").string());
     const Image from_pfm = read_image((dir_ / "x.pfm").string());
-    ASSERT_EQ(from_png.width, 2000);
+    ASSERT_EQ(from_png.width, 1000);
     int off = 0;
     for (size_t i = 0; i < from_png.pixels.size(); ++i) {
         const Rgb& f = from_pfm.pixels[i];
