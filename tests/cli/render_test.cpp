@@ -178,8 +178,14 @@ TEST_F(Render, RayTracedPngNeedsNoFloatImageOfItsSize) {
     };
     const nlohmann::json png = run("x.png"), pfm = run("x.pfm");
     const uint64_t float_image = uint64_t{1000} * 3000 * 12;  // 36 MB; the PNG's rows: 12 MB
+#if defined(__SANITIZE_ADDRESS__)
+    // Not under ASan: its quarantine keeps freed blocks resident (the bands' zlib states and
+    // compressed bytes), 91 MB against 100 MB for the PFM.
+    (void)float_image;
+#else
     EXPECT_LT(png["peak_memory_bytes"].get<uint64_t>() + float_image / 3,
               pfm["peak_memory_bytes"].get<uint64_t>());
+#endif
     for (const char* key : {"rays", "intersection_tests", "samples"}) EXPECT_EQ(png[key], pfm[key]);
     const Image from_png = read_image((dir_ / "x.png").string());
     const Image from_pfm = read_image((dir_ / "x.pfm").string());
