@@ -118,13 +118,12 @@ int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
             scene = build(desc);
             built_from = desc;
         }
-        // A PNG file alone: rendered band by band and compressed as it goes, without a float
-        // image of the whole size (RenderOptions::png; render() decides when it can).
+        // A PNG file: rendered band by band and compressed as it goes, without a float image
+        // of the whole size, when nothing else is asked of the frame (RenderOptions::png:
+        // render() decides, from the terms, mask, region, checkpoint and antialiasing).
         ImageFormat format{};
-        const bool png_only = aovs.empty() && o.aa_mask_file.empty() &&
-                              format_from_path(file_of(out, f), format) &&
-                              format == ImageFormat::png;
-        options.png = png_only ? std::optional<Encoding>(desc.image.encoding) : std::nullopt;
+        const bool png = format_from_path(file_of(out, f), format) && format == ImageFormat::png;
+        options.png = png ? std::optional<Encoding>(desc.image.encoding) : std::nullopt;
         const int done = f - range.first;
         if (bar.enabled()) {
             options.control.progress = [&bar, done, n = range.count()](double p) {

@@ -92,15 +92,20 @@ class ProcessFailure : public MpiTest {
 
     std::string err_text() const { return read_file(run_.err_path); }
 
+    /// The run's luz-mpi process of rank `rank` (start_slow_render()), or -1.
+    pid_t process_of_rank(int rank) const {
+        for (const pid_t p : pids_)
+            if (mpi_rank_of(p) == rank) return p;
+        return -1;
+    }
+
     Background run_;
     std::vector<pid_t> pids_;
 };
 
 TEST_F(ProcessFailure, KilledWorkerEndsTheRun) {
     ASSERT_NO_FATAL_FAILURE(start_slow_render());
-    pid_t victim = -1;
-    for (const pid_t p : pids_)
-        if (mpi_rank_of(p) == 1) victim = p;
+    const pid_t victim = process_of_rank(1);
     ASSERT_GT(victim, 0) << "no process of rank 1";
     ASSERT_EQ(kill(victim, SIGKILL), 0);
     expect_whole_run_ends();
@@ -116,9 +121,7 @@ TEST_F(ProcessFailure, SigintToMpirunEndsTheRun) {
 // rendering and ends the whole run about 10 s later: non-zero, no output left behind.
 TEST_F(ProcessFailure, SigtermToOneWorkerEndsTheRun) {
     ASSERT_NO_FATAL_FAILURE(start_slow_render());
-    pid_t victim = -1;
-    for (const pid_t p : pids_)
-        if (mpi_rank_of(p) == 2) victim = p;
+    const pid_t victim = process_of_rank(2);
     ASSERT_GT(victim, 0) << "no process of rank 2";
     ASSERT_EQ(kill(victim, SIGTERM), 0);
     expect_whole_run_ends(20.0);
