@@ -102,7 +102,7 @@ void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_m
                                               b2, scalar) &
                                active;
                 one_by_one = scalar & active;
-                counters.primitive += __builtin_popcount(active & ~one_by_one);
+                counters.primitive += lane_count(active & ~one_by_one);
                 for (; hit != 0; hit &= hit - 1) {
                     const int k = __builtin_ctz(hit);
                     if (!best[k].better(t[k], p.shape, p.triangle)) continue;
@@ -126,7 +126,7 @@ void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_m
     nearest_packet(scene.bvh, packet, all, t_min, node_limit, counters.bounds,
                    [&](uint32_t first, uint32_t count, unsigned active) {
                        // eight lanes for the rays, or four for the primitives: the fewer tests
-                       const uint32_t rays_in = static_cast<uint32_t>(__builtin_popcount(active));
+                       const uint32_t rays_in = static_cast<uint32_t>(lane_count(active));
                        const uint32_t blocks = (count + PrimBlock::kLanes - 1) / PrimBlock::kLanes;
                        if (!lanes_share_axes || rays_in * blocks <= count) {
                            one_ray_at_a_time(first, count, active);

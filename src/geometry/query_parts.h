@@ -9,6 +9,7 @@
 #include "geometry/ray_triangle.h"
 #include "geometry/scene_query.h"
 #include "geometry/shapes.h"
+#include "math/lane_count.h"
 #include "math/next_float.h"
 
 namespace luz::query {
@@ -81,7 +82,7 @@ struct BlockTest {
     if (triangles != 0) {
         r.hit = intersect_triangles4(w, b, t_min, t_max, r.t, r.b1, r.b2, r.scalar) & triangles;
         r.scalar &= triangles;
-        counters.primitive += static_cast<uint64_t>(__builtin_popcount(triangles & ~r.scalar));
+        counters.primitive += static_cast<uint64_t>(lane_count(triangles & ~r.scalar));
     }
     return r;
 }

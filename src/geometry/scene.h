@@ -42,11 +42,13 @@ struct BuiltScene {
     bool has_bvh = false;  ///< build_bvh() ran: with render.accel bvh, queries use the BVH or
                            ///< (`direct`) test the few shapes in order
     // A scene of at most kDirectShapes shapes and no mesh, which one 8-wide node would hold, is
-    // tested shape by shape instead (`direct`), its spheres in world form four at a time.
+    // tested shape by shape instead (`direct`): its spheres in world form four at a time, then
+    // its planes in world form, then the other shapes behind their boxes.
     static constexpr size_t kDirectShapes = 8;
     bool direct = false;
     std::vector<SphereGroup> sphere_groups;
-    std::vector<int> sphere_lane;  ///< per shape: its lane in sphere_groups (4·group + lane), or −1
+    std::vector<uint32_t> direct_planes;  ///< planes in world form, in scene order
+    std::vector<uint32_t> direct_others;  ///< the shapes in neither, in scene order
     double bvh_build_seconds = 0;
 
     /// The primitive in slot s of the BVH.

@@ -21,7 +21,8 @@ struct SphereGroup {
     float cx[kLanes], cy[kLanes], cz[kLanes];
     float rr[kLanes];  ///< radius · radius, as world_sphere_roots() rounds it
     float radius[kLanes];
-    int count = 0;  ///< lanes in use
+    uint32_t shape[kLanes] = {};  ///< the scene's index of each sphere (set by the scene)
+    int count = 0;                ///< lanes in use
 };
 
 /// One ray against one group: for lane k < count, bit k of `hit` is set where

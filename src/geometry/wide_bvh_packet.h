@@ -14,6 +14,7 @@
 
 #include "geometry/ray_packet.h"
 #include "geometry/wide_bvh.h"
+#include "math/lane_count.h"
 
 namespace luz {
 
@@ -85,7 +86,7 @@ void nearest_packet(const Bvh8& bvh, const RayPacket& p, unsigned active, float 
             test(cur.child, cur.count, cur.lanes);
         } else {
             const Bvh8::Node& n = nodes[cur.child];
-            box_tests += 8 * static_cast<uint64_t>(__builtin_popcount(cur.lanes));
+            box_tests += 8 * static_cast<uint64_t>(lane_count(cur.lanes));
             const Lane8f limit = with_margin(load_lanes(t_max));
             const Lane8i in_packet = lane_mask(cur.lanes);
             Entry h[8];

@@ -1,4 +1,5 @@
-// Atomic file writing: a temporary file in the same folder, flushed, then renamed into place.
+// Atomic file writing: a temporary file in the same folder (flushed to disk on request), then
+// renamed into place.
 #include "image/atomic_file.h"
 
 #include <fcntl.h>
@@ -88,11 +89,12 @@ bool write_all(int fd, std::vector<std::string_view> pieces) {
 
 }  // namespace
 
-PendingFile::PendingFile(std::string path, const std::string& bytes)
-    : PendingFile(std::move(path), std::vector<std::string_view>{bytes}) {}
+PendingFile::PendingFile(std::string path, const std::string& bytes, Durability durability)
+    : PendingFile(std::move(path), std::vector<std::string_view>{bytes}, durability) {}
 
-PendingFile::PendingFile(std::string path_in, const std::vector<std::string_view>& pieces)
-    : path_(std::move(path_in)) {
+PendingFile::PendingFile(std::string path_in, const std::vector<std::string_view>& pieces,
+                         Durability durability)
+    : path_(std::move(path_in)), durability_(durability) {
     const std::string& path = path_;
     const auto [dir, name] = split_path(path);
     const auto fail = [&path](int err) {
@@ -111,9 +113,9 @@ PendingFile::PendingFile(std::string path_in, const std::vector<std::string_view
         if (fd < 0 && (errno != EEXIST || attempt >= 100)) fail(errno);
     }
 
-    // Write, flush to disk, close; any error removes the temporary file.
+    // Write, flush to disk if asked, close; any error removes the temporary file.
     int err = 0;
-    if (!write_all(fd, pieces) || ::fsync(fd) != 0) err = errno;
+    if (!write_all(fd, pieces) || (durability == Durability::disk && ::fsync(fd) != 0)) err = errno;
     if (::close(fd) != 0 && err == 0) err = errno;
     if (err != 0) {
         ::unlink(tmp.c_str());
@@ -135,6 +137,7 @@ void PendingFile::commit() {
         throw FileError(path_ + ": cannot write: " + error_text(err));
     }
     committed_ = true;
+    if (durability_ != Durability::disk) return;
     // Best effort: make the rename itself durable.
     const size_t slash = path_.find_last_of('/');
     const std::string dir = slash == std::string::npos ? "." : path_.substr(0, slash + 1);

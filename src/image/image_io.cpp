@@ -1,5 +1,5 @@
 // Image files: picks the format, encodes in memory, and writes atomically (temporary file in the
-// same directory, fsync, rename); reads whole files and decodes them by their content.
+// same directory, then renamed); reads whole files and decodes them by their content.
 
 #include "image/image_io.h"
 

@@ -136,7 +136,7 @@ void Checkpoint::save_locked() {
         at += 16;
     }
     pieces.push_back(end);
-    PendingFile file(path_, pieces);
+    PendingFile file(path_, pieces, Durability::disk);  // it must outlive a machine crash
     file.commit();
     last_save_ = std::chrono::steady_clock::now();
 }

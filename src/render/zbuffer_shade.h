@@ -9,6 +9,7 @@
 
 #include "geometry/scene.h"
 #include "math/lane8.h"
+#include "math/lane_count.h"
 #include "render/aov.h"
 #include "render/rasterizer.h"
 #include "render/stats.h"
@@ -191,7 +192,7 @@ inline void shade_fragments_lanes(const ZbufferFrame& f, const Lighting& lightin
         shade_lanes(p, lighting, active, shaded);
         const Lane8i mask = lane_mask(active);
         for (int a = 0; a < 3; ++a) I[a] = lane_select(mask, shaded[a], I[a]);
-        stats.samples += static_cast<uint64_t>(__builtin_popcount(active));
+        stats.samples += static_cast<uint64_t>(lane_count(active));
     }
     store_colours(out, I[0], I[1], I[2]);
     for (unsigned rest = covered & ~active; rest; rest &= rest - 1) {
