@@ -1,0 +1,40 @@
+# Profile-guided optimisation of the release build (LUZ_PGO, on in the `release` preset).
+# The first build of a build folder first builds an instrumented `luz` of the same sources in
+# <build>/pgo/build, runs cmake/pgo_train.cmake's renders with it (every demo scene through the
+# pipelines and antialiasing modes, a few seconds), and then compiles everything with the
+# profile it wrote to <build>/pgo/profile. Functions the renders never ran are optimised as
+# without a profile (-fprofile-partial-training). No floating-point option changes: the images
+# are the same bits as without PGO. Delete <build>/pgo to train again after large changes (a
+# stale profile is only less useful: source changes are ignored with their warning silenced).
+if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  message(FATAL_ERROR "LUZ_PGO needs GCC (its -fprofile-use and -fprofile-prefix-path)")
+endif()
+if(LUZ_SANITIZE)
+  message(FATAL_ERROR "LUZ_PGO and LUZ_SANITIZE do not go together")
+endif()
+
+set(luz_pgo_dir ${PROJECT_BINARY_DIR}/pgo)
+set(luz_pgo_stamp ${luz_pgo_dir}/profile.stamp)
+# The profile files are named by the object's path within its build folder (prefix-path), so the
+# training build's CMakeFiles/luz_render.dir/… profiles are found by this build's same objects.
+add_compile_options(-fprofile-use=${luz_pgo_dir}/profile -fprofile-prefix-path=${PROJECT_BINARY_DIR}
+                    -fprofile-partial-training -Wno-missing-profile -Wno-coverage-mismatch)
+add_custom_command(
+  OUTPUT ${luz_pgo_stamp}
+  COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -DPGO_DIR=${luz_pgo_dir}
+          -DGENERATOR=${CMAKE_GENERATOR} -DCXX=${CMAKE_CXX_COMPILER} -DNATIVE=${LUZ_NATIVE}
+          -DPIC=$<BOOL:${CMAKE_POSITION_INDEPENDENT_CODE}>
+          -P ${PROJECT_SOURCE_DIR}/cmake/pgo_train.cmake
+  DEPENDS ${PROJECT_SOURCE_DIR}/cmake/pgo_train.cmake
+  COMMENT "PGO: building an instrumented luz and running the training renders"
+  USES_TERMINAL)
+add_custom_target(luz_pgo_profile DEPENDS ${luz_pgo_stamp})
+
+# The targets whose objects need the profile before they compile (called once they exist).
+function(luz_pgo_after_profile)
+  foreach(target ${ARGN})
+    if(TARGET ${target})
+      add_dependencies(${target} luz_pgo_profile)
+    endif()
+  endforeach()
+endfunction()
