@@ -1,10 +1,14 @@
 // BuiltScene queries for a small scene without meshes (BuiltScene::direct: at most 8 shapes, which
 // one 8-wide BVH node would hold): its world-form spheres four at a time (sphere_group.h), then
-// its world-form planes, then the other shapes behind their boxes. The nearest hit is ordered by
-// (t, shape) as everywhere (query_parts.h: Best), so the order of the tests changes no answer;
-// nor does it change a transmittance (crossings multiply in material order, and an opaque one is
-// 0 wherever it is met).
+// its world-form planes, then the other shapes behind their boxes. A packet of camera rays
+// (nearest_hits_direct) takes the spheres the other way round: four rays at a time against one
+// sphere, the same steps lane for lane. The nearest hit is ordered by (t, shape) as everywhere
+// (query_parts.h: Best), so the order of the tests changes no answer; nor does it change a
+// transmittance (crossings multiply in material order, and an opaque one is 0 wherever it is met).
+#include <algorithm>
+
 #include "geometry/query_parts.h"
+#include "geometry/sphere_group.h"
 
 namespace luz::query {
 
@@ -25,6 +29,26 @@ struct LazyBoxTest {
 
 /// The lanes of group g in use.
 unsigned used_lanes(const SphereGroup& g) { return (1u << g.count) - 1; }
+
+/// What follows the spheres in a nearest-hit query: the world-form planes, then the other shapes
+/// behind their boxes, offered to `best`.
+void offer_planes_and_others(const BuiltScene& scene, const Ray& r, float t_min, Best& best,
+                             IntersectCounters& counters) {
+    for (const uint32_t i : scene.direct_planes) {
+        ++counters.primitive;
+        const float t = shapes::plane::world_root(scene.shapes[i], r);  // as intersect() finds it
+        if (t > t_min && t < best.limit() && best.better(t, i, 0))
+            best.take(t, i, 0, 0.0f, 0.0f, part_side);
+    }
+    LazyBoxTest boxes{r};
+    for (const uint32_t i : scene.direct_others) {
+        const Shape& s = scene.shapes[i];
+        if (is_bounded(s) &&
+            !boxes.hit(scene.bounds[i], t_min, bvh_detail::with_margin(best.limit()), counters))
+            continue;
+        offer_shape(scene, i, r, t_min, best, counters);
+    }
+}
 
 }  // namespace
 
@@ -63,23 +87,90 @@ bool nearest_hit_direct(const BuiltScene& scene, const Ray& r, float t_min, floa
         for (unsigned lanes = q.slow; lanes != 0; lanes &= lanes - 1)
             offer_shape(scene, g.shape[__builtin_ctz(lanes)], r, t_min, best, counters);
     }
-    for (const uint32_t i : scene.direct_planes) {
-        ++counters.primitive;
-        const float t = shapes::plane::world_root(scene.shapes[i], r);  // as intersect() finds it
-        if (t > t_min && t < best.limit() && best.better(t, i, 0))
-            best.take(t, i, 0, 0.0f, 0.0f, part_side);
-    }
-    LazyBoxTest boxes{r};
-    for (const uint32_t i : scene.direct_others) {
-        const Shape& s = scene.shapes[i];
-        if (is_bounded(s) &&
-            !boxes.hit(scene.bounds[i], t_min, bvh_detail::with_margin(best.limit()), counters))
-            continue;
-        offer_shape(scene, i, r, t_min, best, counters);
-    }
+    offer_planes_and_others(scene, r, t_min, best, counters);
     if (!best.found) return false;
     hit = best.hit;
     return true;
+}
+
+void nearest_hits_direct(const BuiltScene& scene, const Ray* rays, int n, float t_min, float t_max,
+                         Hit* hits, bool* found, IntersectCounters& counters) {
+#if defined(__SSE2__)
+    using F = Float4;
+    constexpr int kLanes = 4;
+    for (int first = 0; first < n; first += kLanes) {
+        const Ray* r = rays + first;
+        const int m = std::min(kLanes, n - first);
+        const unsigned used = (1u << m) - 1;
+        // Lane l holds ray l (lanes beyond m repeat ray 0 and are never reported).
+        alignas(16) float o[3][kLanes], d[3][kLanes];
+        for (int l = 0; l < kLanes; ++l) {
+            for (int c = 0; c < 3; ++c) {
+                o[c][l] = r[l < m ? l : 0].origin[c];
+                d[c][l] = r[l < m ? l : 0].direction[c];
+            }
+        }
+        const Lane3<F> dir{F::load(d[0]), F::load(d[1]), F::load(d[2])};
+        const F a = dot(dir, dir);  // |d|², as world_sphere_roots() rounds it
+        // A ray with |d|² below the pre-test's range, 0 or NaN takes world_sphere_roots()'s
+        // other paths: such a packet goes ray by ray.
+        const unsigned usual = static_cast<unsigned>(
+            _mm_movemask_ps(_mm_cmpge_ps(a.v, F(ray_sphere::kMinPreTestA).v)));
+        if ((usual & used) != used) {
+            for (int l = 0; l < m; ++l)
+                found[first + l] =
+                    nearest_hit_direct(scene, r[l], t_min, t_max, hits[first + l], counters);
+            continue;
+        }
+        const F inv_a = F(1.0f) / a;
+        Best best[kLanes] = {Best(t_max), Best(t_max), Best(t_max), Best(t_max)};
+        for (const SphereGroup& g : scene.sphere_groups) {
+            for (int s = 0; s < g.count; ++s) {
+                // world_sphere_roots()'s steps, a ray in each lane (sphere_group_roots(): a
+                // sphere in each lane): the same roots, bit for bit.
+                const F rr(g.rr[s]);
+                const Lane3<F> os{F::load(o[0]) - F(g.cx[s]), F::load(o[1]) - F(g.cy[s]),
+                                  F::load(o[2]) - F(g.cz[s])};
+                const ray_sphere::Terms<F> k = ray_sphere::terms(os, dir, rr);
+                const unsigned near = ~ray_sphere::surely_misses(a, k, rr).bits() & used;
+                unsigned slow = 0;
+                if (near != 0) {
+                    slow = ray_sphere::needs_double(k.c, k.oo, rr).bits() & near;
+                    const F disc = ray_sphere::discriminant(os, dir, k.b, a, inv_a, rr);
+                    const unsigned hit = ~(disc < F(0.0f)).bits() & near & ~slow;
+                    if (hit != 0) {
+                        F t0, t1;
+                        ray_sphere::roots(k.b, k.c, disc, inv_a, t0, t1);
+                        alignas(16) float t0s[kLanes], t1s[kLanes];
+                        t0.store(t0s);
+                        t1.store(t1s);
+                        for (unsigned lanes = hit; lanes != 0; lanes &= lanes - 1) {
+                            const int l = __builtin_ctz(lanes);
+                            float t;  // the root intersect() would choose
+                            if (nearest_root(t0s[l], t1s[l], t_min, best[l].limit(), t) &&
+                                best[l].better(t, g.shape[s], 0))
+                                best[l].take(t, g.shape[s], 0, 0.0f, 0.0f, part_side);
+                        }
+                    }
+                }
+                // one test per ray, a slow one counted by offer_shape()
+                counters.primitive += static_cast<uint64_t>(m) - lane_count(slow);
+                for (unsigned lanes = slow; lanes != 0; lanes &= lanes - 1) {
+                    const int l = __builtin_ctz(lanes);
+                    offer_shape(scene, g.shape[s], r[l], t_min, best[l], counters);
+                }
+            }
+        }
+        for (int l = 0; l < m; ++l) {
+            offer_planes_and_others(scene, r[l], t_min, best[l], counters);
+            found[first + l] = best[l].found;
+            if (best[l].found) hits[first + l] = best[l].hit;
+        }
+    }
+#else
+    for (int k = 0; k < n; ++k)
+        found[k] = nearest_hit_direct(scene, rays[k], t_min, t_max, hits[k], counters);
+#endif
 }
 
 float transmittance_direct(const BuiltScene& scene, const Materials& materials, const Ray& r,

@@ -243,6 +243,9 @@ float transmittance_all(const BuiltScene& scene, const Materials& materials, con
 void prepare_direct(BuiltScene& scene);
 bool nearest_hit_direct(const BuiltScene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
                         IntersectCounters& counters);
+/// nearest_hit_direct() of n rays, four at a time against each sphere (a packet of camera rays).
+void nearest_hits_direct(const BuiltScene& scene, const Ray* rays, int n, float t_min, float t_max,
+                         Hit* hits, bool* found, IntersectCounters& counters);
 float transmittance_direct(const BuiltScene& scene, const Materials& materials, const Ray& r,
                            float t_min, float t_max, IntersectCounters& counters);
 

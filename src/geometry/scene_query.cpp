@@ -61,15 +61,13 @@ bool nearest_hit(const BuiltScene& scene, const Ray& r, float t_min, float t_max
 void nearest_hits(const BuiltScene& scene, const Ray* rays, int n, float t_min, float t_max,
                   Hit* hits, bool* found, IntersectCounters& counters) {
     timed(counters, [&] {
-        if (!use_direct(scene) && use_bvh(scene)) {
+        if (use_direct(scene)) {
+            query::nearest_hits_direct(scene, rays, n, t_min, t_max, hits, found, counters);
+        } else if (use_bvh(scene)) {
             query::nearest_hits_bvh(scene, rays, n, t_min, t_max, hits, found, counters);
-            return true;
-        }
-        for (int k = 0; k < n; ++k) {
-            found[k] =
-                use_direct(scene)
-                    ? query::nearest_hit_direct(scene, rays[k], t_min, t_max, hits[k], counters)
-                    : query::nearest_hit_all(scene, rays[k], t_min, t_max, hits[k], counters);
+        } else {
+            for (int k = 0; k < n; ++k)
+                found[k] = query::nearest_hit_all(scene, rays[k], t_min, t_max, hits[k], counters);
         }
         return true;
     });

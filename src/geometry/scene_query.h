@@ -61,8 +61,9 @@ inline constexpr int kMaxPacket = 8;
 
 /// nearest_hit() of rays[0 … n) (1 ≤ n ≤ kMaxPacket), all over (t_min, t_max): found[k] and
 /// hits[k] (set when found) are bit for bit what nearest_hit() gives rays[k]. With the scene's
-/// BVH the rays go down it together, as a packet (query_packet.cpp): for coherent rays, such
-/// as neighbouring camera rays, faster than one by one; otherwise one by one.
+/// BVH the rays go down it together, as a packet (query_packet.cpp); in a small scene tested
+/// shape by shape, four rays meet each sphere at once (query_direct.cpp): for coherent rays,
+/// such as neighbouring camera rays, faster than one by one. Otherwise one by one.
 void nearest_hits(const BuiltScene& scene, const Ray* rays, int n, float t_min, float t_max,
                   Hit* hits, bool* found, IntersectCounters& counters);
 

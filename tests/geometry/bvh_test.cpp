@@ -457,6 +457,75 @@ TEST(SmallScenes, ShapeByShapeEqualsTheBvhAndTestingEverything) {
     EXPECT_LT(cd.bounds, ca.bounds / 2);
 }
 
+TEST(SmallScenes, PacketsTestFourRaysPerSphereBitForBit) {
+    // nearest_hits() in a scene tested shape by shape takes four rays at a time against each
+    // sphere in world form (query_direct.cpp): every hit and every count must be what
+    // nearest_hit() gives ray by ray — five spheres (two groups) with a tie, an ellipsoid and a
+    // box (tested per ray), a plane; camera packets, random rays, rays from a sphere's surface
+    // (its double path) and rays of zero or tiny direction (the packet goes ray by ray), packets
+    // of every size 1–8 and a finite t_max.
+    std::vector<ObjectDesc> objects = {sphere({0, 0, 0}, 1.5f, 1), sphere({0, 0, 0}, 1.5f, 2),
+                                       sphere({2, 1, -1}, 0.8f, 0), sphere({-2, 2, 0}, 0.6f, 1),
+                                       sphere({0, 3, -2}, 1.1f, 0)};
+    ObjectDesc ellipsoid = sphere({-2, 1, 1}, 1.0f, 1);
+    ellipsoid.transform = scaling({1.5f, 0.5f, 1.0f});  // not a similarity: object space
+    objects.push_back(ellipsoid);
+    objects.push_back(box({1, -3, 1}, {3, -1, 2}, 2));
+    objects.push_back(plane({0, -4, 0}, 2));
+    const BuiltScene scene = build_scene(scene_with(objects));
+    ASSERT_TRUE(scene.direct);
+    ASSERT_EQ(scene.sphere_groups.size(), 2u);
+
+    std::vector<Ray> rays;
+    for (const Vec3& eye : {Vec3{0, 0, 12}, Vec3{9, 4, -7}, Vec3{0.1f, -3.5f, 0}})
+        for (const Ray& r : camera_rays(eye, {0, 0, 0}, 48, 32, 0.6f)) rays.push_back(r);
+    RandomRays gen;
+    for (int k = 0; k < 30000; ++k) {
+        float t_max;
+        Ray r = gen.next(k, t_max);
+        if (k % 3 == 2) {  // from the first sphere's surface, on it or 1e-4 off it
+            const float offset = (k & 8) ? 1e-4f : (k & 16) ? -1e-4f : 0.0f;
+            r.origin = random_direction(gen.rng) * (1.5f + offset);
+        }
+        if (k % 97 == 5) r.direction = Vec3{0.0f};              // no direction at all
+        if (k % 89 == 7) r.direction = r.direction * 0x1p-40f;  // |d|² below the pre-test's
+        rays.push_back(r);
+    }
+    int hits = 0, slow = 0;
+    for (const float t_max : {std::numeric_limits<float>::infinity(), 7.5f}) {
+        for (int packet = 1; packet <= kMaxPacket; ++packet) {
+            SCOPED_TRACE("packets of " + std::to_string(packet) + ", t_max " +
+                         std::to_string(t_max));
+            IntersectCounters by_packet, by_ray;
+            int mismatches = 0;
+            for (size_t first = 0; first < rays.size(); first += static_cast<size_t>(packet)) {
+                const int n = static_cast<int>(std::min<size_t>(packet, rays.size() - first));
+                Hit hs[kMaxPacket];
+                bool found[kMaxPacket];
+                nearest_hits(scene, &rays[first], n, 0.0f, t_max, hs, found, by_packet);
+                for (int k = 0; k < n; ++k) {
+                    Hit h;
+                    const bool f = nearest_hit(scene, rays[first + k], 0.0f, t_max, h, by_ray);
+                    const bool same =
+                        f == found[k] && (!f || (std::memcmp(&h, &hs[k], sizeof h) == 0));
+                    if (!same && ++mismatches <= 5) {
+                        ADD_FAILURE() << "ray " << first + k << ": alone " << f << " t=" << h.t
+                                      << " shape " << h.shape << "; packet " << found[k]
+                                      << " t=" << hs[k].t << " shape " << hs[k].shape;
+                    }
+                    hits += f;
+                }
+            }
+            EXPECT_EQ(mismatches, 0);
+            EXPECT_EQ(by_packet.primitive, by_ray.primitive);
+            EXPECT_EQ(by_packet.bounds, by_ray.bounds);
+        }
+    }
+    for (const Ray& r : rays) slow += sphere_group_roots(scene.sphere_groups[0], r).slow != 0;
+    EXPECT_GT(hits, 100000);
+    EXPECT_GT(slow, 1000);
+}
+
 // ---- the tree itself ------------------------------------------------------------------------
 
 bool contains(const BvhNode& n, const Bounds3& b) {
