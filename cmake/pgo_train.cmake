@@ -1,7 +1,7 @@
 # The training of LUZ_PGO (cmake/pgo.cmake), run as cmake -P with SOURCE_DIR, PGO_DIR, GENERATOR,
-# CXX and NATIVE (LUZ_NATIVE): an instrumented luz of the same sources, then renders that exercise what users run —
-# every demo scene, the three pipelines, the antialiasing modes, a mesh through the BVH — small
-# enough to take a few seconds.
+# CXX, NATIVE (LUZ_NATIVE) and PIC (position-independent code): an instrumented luz of the same
+# sources and flags, then renders that exercise what users run — every demo scene, the three
+# pipelines, the antialiasing modes, a mesh through the BVH — small enough to take a few seconds.
 set(build ${PGO_DIR}/build)
 set(profile ${PGO_DIR}/profile)
 execute_process(

@@ -27,10 +27,10 @@ struct LazyBoxTest {
     }
 };
 
-/// The tests of a group's lanes that the group itself counts: each sphere's, but those handed
+/// The tests a SIMD sphere test counts itself among its `lanes` tests: all but the lanes handed
 /// to the scalar test (`slow`, rare), which counts its own.
-uint64_t group_tests(const SphereGroup& g, unsigned slow) {
-    return static_cast<uint64_t>(g.count) - (slow != 0 ? lane_count(slow) : 0);
+uint64_t tests_besides(int lanes, unsigned slow) {
+    return static_cast<uint64_t>(lanes) - (slow != 0 ? lane_count(slow) : 0);
 }
 
 /// What follows the spheres in a nearest-hit query: the world-form planes, then the other shapes
@@ -79,7 +79,7 @@ bool nearest_hit_direct(const BuiltScene& scene, const Ray& r, float t_min, floa
     Best best(t_max);
     for (const SphereGroup& g : scene.sphere_groups) {
         const SphereGroupRoots q = sphere_group_roots(g, r);
-        counters.primitive += group_tests(g, q.slow);
+        counters.primitive += tests_besides(g.count, q.slow);
         for (unsigned lanes = q.hit; lanes != 0; lanes &= lanes - 1) {
             const int k = __builtin_ctz(lanes);
             float t;  // the root intersect() would choose
@@ -157,7 +157,7 @@ void nearest_hits_direct(const BuiltScene& scene, const Ray* rays, int n, float 
                     }
                 }
                 // one test per ray, a slow one counted by offer_shape()
-                counters.primitive += static_cast<uint64_t>(m) - (slow != 0 ? lane_count(slow) : 0);
+                counters.primitive += tests_besides(m, slow);
                 for (unsigned lanes = slow; lanes != 0; lanes &= lanes - 1) {
                     const int l = __builtin_ctz(lanes);
                     offer_shape(scene, g.shape[s], r[l], t_min, best[l], counters);
@@ -181,7 +181,7 @@ float transmittance_direct(const BuiltScene& scene, const Materials& materials, 
     Crossings crossings;
     for (const SphereGroup& g : scene.sphere_groups) {
         const SphereGroupRoots q = sphere_group_roots(g, r);
-        counters.primitive += group_tests(g, q.slow);
+        counters.primitive += tests_besides(g.count, q.slow);
         for (unsigned lanes = q.hit; lanes != 0; lanes &= lanes - 1) {
             const int k = __builtin_ctz(lanes);
             const uint32_t n = roots_within(q.t0[k], q.t1[k], t_min, t_max);
