@@ -25,12 +25,12 @@ typedef int32_t Lane8i __attribute__((vector_size(32)));
 
 /// x in every lane (its bits: a −0 stays −0).
 inline Lane8f lanes(float x) { return Lane8f{x, x, x, x, x, x, x, x}; }
-inline Lane8f load_lanes(const float* p) {
-    Lane8f v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
-inline void store_lanes(float* p, Lane8f v) { std::memcpy(p, &v, sizeof v); }
+/// The same type at any 4-byte-aligned address, of any type (one unaligned load or store: a
+/// std::memcpy of several of them goes through the stack).
+typedef float Lane8fUnaligned __attribute__((vector_size(32), aligned(4), may_alias));
+/// Eight floats at p (32 bytes of any 4-byte-aligned object), and back.
+inline Lane8f load_lanes(const void* p) { return *static_cast<const Lane8fUnaligned*>(p); }
+inline void store_lanes(void* p, Lane8f v) { *static_cast<Lane8fUnaligned*>(p) = v; }
 /// Bit k set where lane k of `m` is true.
 inline unsigned lane_bits(Lane8i m) {
 #if defined(__AVX__)
@@ -48,15 +48,21 @@ inline unsigned lane_bits(Lane8i m) {
 }
 /// The lanes of `mask` as a mask vector.
 inline Lane8i lane_mask(unsigned mask) {
-    Lane8i m;
-    for (int k = 0; k < kPacketLanes; ++k) m[k] = (mask >> k) & 1u ? -1 : 0;
-    return m;
+    const Lane8i bit = {1, 2, 4, 8, 16, 32, 64, 128};
+    return ((Lane8i{} + static_cast<int32_t>(mask)) & bit) != 0;
 }
 
 /// √x lane by lane (IEEE, as std::sqrt).
 inline Lane8f lane_sqrt(Lane8f x) {
 #if defined(__AVX__)
     return (Lane8f)_mm256_sqrt_ps((__m256)x);
+#elif defined(__SSE2__)
+    __m128 half[2];
+    std::memcpy(half, &x, sizeof half);
+    half[0] = _mm_sqrt_ps(half[0]);
+    half[1] = _mm_sqrt_ps(half[1]);
+    std::memcpy(&x, half, sizeof x);
+    return x;
 #else
     for (int k = 0; k < kPacketLanes; ++k) x[k] = __builtin_sqrtf(x[k]);
     return x;

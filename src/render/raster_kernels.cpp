@@ -109,10 +109,11 @@ inline void store_fragments(Fragment* f, Lane8i nearer, Lane8f depth, uint32_t t
                             __builtin_shufflevector(nearer, nearer, 2, 2, 2, 2, 3, 3, 3, 3),
                             __builtin_shufflevector(nearer, nearer, 4, 4, 4, 4, 5, 5, 5, 5),
                             __builtin_shufflevector(nearer, nearer, 6, 6, 6, 6, 7, 7, 7, 7)};
-    Lane8f held[4];
-    std::memcpy(held, f, sizeof held);
-    for (int i = 0; i < 4; ++i) held[i] = lane_select(mask[i], fresh[i], held[i]);
-    std::memcpy(f, held, sizeof held);
+    char* bytes = reinterpret_cast<char*>(f);
+    for (int i = 0; i < 4; ++i) {
+        char* at = bytes + i * sizeof(Lane8f);
+        store_lanes(at, lane_select(mask[i], fresh[i], load_lanes(at)));
+    }
 }
 
 }  // namespace

@@ -73,8 +73,11 @@ inline void load_fragments(const Fragment* f, Lane8f& depth, Lane8i& triangle, L
                            Lane8f& b2) {
     static_assert(sizeof(Fragment) == 4 * sizeof(float) && offsetof(Fragment, triangle) == 4 &&
                   offsetof(Fragment, b1) == 8 && offsetof(Fragment, b2) == 12);
-    Lane8f v[4];  // fragments (0 1), (2 3), (4 5), (6 7)
-    std::memcpy(v, f, sizeof v);
+    // fragments (0 1), (2 3), (4 5), (6 7), loaded straight into registers (a copy through
+    // the stack stalls the loads on its 16-byte stores)
+    const char* bytes = reinterpret_cast<const char*>(f);
+    Lane8f v[4];
+    for (int i = 0; i < 4; ++i) v[i] = load_lanes(bytes + i * sizeof(Lane8f));
     // (depth triangle) and (b1 b2) of fragments 0 … 3, then 4 … 7
     const Lane8f dt_lo = __builtin_shufflevector(v[0], v[1], 0, 4, 8, 12, 1, 5, 9, 13);
     const Lane8f dt_hi = __builtin_shufflevector(v[2], v[3], 0, 4, 8, 12, 1, 5, 9, 13);
@@ -95,7 +98,8 @@ inline void store_colours(Rgb* out, Lane8f r, Lane8f g, Lane8f b) {
     const Lane8f v[3] = {__builtin_shufflevector(rg_lo, b, 0, 1, 8, 2, 3, 9, 4, 5),
                          __builtin_shufflevector(rg_mid, b, 10, 0, 1, 11, 2, 3, 12, 4),
                          __builtin_shufflevector(rg_hi, b, 3, 13, 4, 5, 14, 6, 7, 15)};
-    std::memcpy(out, v, sizeof v);
+    char* bytes = reinterpret_cast<char*>(out);
+    for (int i = 0; i < 3; ++i) store_lanes(bytes + i * sizeof(Lane8f), v[i]);
 }
 
 }  // namespace zbuffer_detail
