@@ -5,7 +5,6 @@
 #pragma once
 
 #include <cstdint>
-#include <cstring>
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -36,9 +35,8 @@ inline unsigned lane_bits(Lane8i m) {
 #if defined(__AVX__)
     return static_cast<unsigned>(_mm256_movemask_ps((__m256)m));
 #elif defined(__SSE2__)
-    __m128 lo, hi;
-    std::memcpy(&lo, &m, sizeof lo);
-    std::memcpy(&hi, reinterpret_cast<const char*>(&m) + sizeof lo, sizeof hi);
+    const __m128 lo = (__m128)__builtin_shufflevector(m, m, 0, 1, 2, 3);
+    const __m128 hi = (__m128)__builtin_shufflevector(m, m, 4, 5, 6, 7);
     return static_cast<unsigned>(_mm_movemask_ps(lo) | (_mm_movemask_ps(hi) << 4));
 #else
     unsigned bits = 0;
@@ -56,13 +54,10 @@ inline Lane8i lane_mask(unsigned mask) {
 inline Lane8f lane_sqrt(Lane8f x) {
 #if defined(__AVX__)
     return (Lane8f)_mm256_sqrt_ps((__m256)x);
-#elif defined(__SSE2__)
-    __m128 half[2];
-    std::memcpy(half, &x, sizeof half);
-    half[0] = _mm_sqrt_ps(half[0]);
-    half[1] = _mm_sqrt_ps(half[1]);
-    std::memcpy(&x, half, sizeof x);
-    return x;
+#elif defined(__SSE2__)  // the two halves, each in one register
+    const __m128 lo = _mm_sqrt_ps((__m128)__builtin_shufflevector(x, x, 0, 1, 2, 3));
+    const __m128 hi = _mm_sqrt_ps((__m128)__builtin_shufflevector(x, x, 4, 5, 6, 7));
+    return (Lane8f)__builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
 #else
     for (int k = 0; k < kPacketLanes; ++k) x[k] = __builtin_sqrtf(x[k]);
     return x;

@@ -160,10 +160,10 @@ inline void shade_fragments_lanes(const ZbufferFrame& f, const Lighting& lightin
         // P and N interpolated from the triangle's vertices, as fragment_point() does; the
         // vertices are read once per distinct triangle of the eight (neighbours share them).
         Lane8f vp[3][3] = {}, vn[3][3] = {};  // [vertex][component]
-        for (unsigned todo = active; todo;) {
-            const int32_t t = triangle[__builtin_ctz(todo)];
+        for (unsigned pending = active; pending;) {
+            const int32_t t = triangle[__builtin_ctz(pending)];
             const Lane8i same = triangle == t;
-            todo &= ~lane_bits(same);
+            pending &= ~lane_bits(same);
             const uint32_t* idx = &mesh.indices[3 * static_cast<size_t>(t)];
             for (int i = 0; i < 3; ++i) {
                 const float* q = &mesh.positions[idx[i]].x;
