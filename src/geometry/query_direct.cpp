@@ -34,9 +34,10 @@ uint64_t tests_besides(int lanes, unsigned slow) {
 }
 
 /// What follows the spheres in a nearest-hit query: the world-form planes, then the other shapes
-/// behind their boxes, offered to `best`.
-void offer_planes_and_others(const BuiltScene& scene, const Ray& r, float t_min, Best& best,
-                             IntersectCounters& counters) {
+/// behind their boxes, offered to `best`. Inlined: every camera and secondary ray passes here.
+[[gnu::always_inline]] inline void offer_planes_and_others(const BuiltScene& scene, const Ray& r,
+                                                           float t_min, Best& best,
+                                                           IntersectCounters& counters) {
     for (const uint32_t i : scene.direct_planes) {
         ++counters.primitive;
         const float t = shapes::plane::world_root(scene.shapes[i], r);  // as intersect() finds it
@@ -78,7 +79,7 @@ bool nearest_hit_direct(const BuiltScene& scene, const Ray& r, float t_min, floa
                         IntersectCounters& counters) {
     Best best(t_max);
     for (const SphereGroup& g : scene.sphere_groups) {
-        const SphereGroupRoots q = sphere_group_roots(g, r);
+        const SphereGroupRoots q = sphere_group_roots(g, r, t_min >= 0);
         counters.primitive += tests_besides(g.count, q.slow);
         for (unsigned lanes = q.hit; lanes != 0; lanes &= lanes - 1) {
             const int k = __builtin_ctz(lanes);
@@ -180,7 +181,7 @@ float transmittance_direct(const BuiltScene& scene, const Materials& materials, 
                            float t_min, float t_max, IntersectCounters& counters) {
     Crossings crossings;
     for (const SphereGroup& g : scene.sphere_groups) {
-        const SphereGroupRoots q = sphere_group_roots(g, r);
+        const SphereGroupRoots q = sphere_group_roots(g, r, t_min >= 0);
         counters.primitive += tests_besides(g.count, q.slow);
         for (unsigned lanes = q.hit; lanes != 0; lanes &= lanes - 1) {
             const int k = __builtin_ctz(lanes);

@@ -62,7 +62,13 @@ inline SphereGroupRoots sphere_group_roots_one_by_one(const SphereGroup& g, cons
 
 /// The roots of r with the group's spheres, four at once with SSE2 (else one by one): the
 /// steps of world_sphere_roots() with F = Float4, a = |d|² and 1/a shared by the lanes.
-inline SphereGroupRoots sphere_group_roots(const SphereGroup& g, const Ray& r) {
+/// `ahead_only`: for a caller that takes roots at t > 0 only (the scene queries: t_min = 0), a
+/// lane whose two roots are both ≤ 0 is not reported either: an origin outside the sphere
+/// (c > 0) moving away from its centre (b > 0) gives q = −(b + √disc) < 0, so c/q and q/a are
+/// both negative (or −0). Rays spawned on a sphere leave it so; when no other lane is near,
+/// their test ends before the square root and division.
+inline SphereGroupRoots sphere_group_roots(const SphereGroup& g, const Ray& r,
+                                           bool ahead_only = false) {
     SphereGroupRoots out;
     const unsigned used = (1u << g.count) - 1;
     const Lane3<float> d1{r.direction.x, r.direction.y, r.direction.z};
@@ -79,14 +85,20 @@ inline SphereGroupRoots sphere_group_roots(const SphereGroup& g, const Ray& r) {
     const F rr = F::load(g.rr);
     const ray_sphere::Terms<F> k = ray_sphere::terms(o, d, rr);
     // Every lane a sure miss (as world_sphere_roots() tells it): no division at all.
-    if (a >= ray_sphere::kMinPreTestA &&
-        (~ray_sphere::surely_misses(F(a), k, rr).bits() & used) == 0) {
-        return out;
+    unsigned near = used;
+    if (a >= ray_sphere::kMinPreTestA) {
+        near &= ~ray_sphere::surely_misses(F(a), k, rr).bits();
+        if (near == 0) return out;
+    }
+    out.slow = ray_sphere::needs_double(k.c, k.oo, rr).bits() & used;
+    unsigned solve = used & ~out.slow;
+    if (ahead_only) {  // both roots ≤ 0: outside (c > 0) and moving away (b > 0)
+        solve &= ~((F(0.0f) < k.c).bits() & (F(0.0f) < k.b).bits());
+        if ((solve & near) == 0) return out;  // only the slow lanes, if any, to test
     }
     const float inv_a = 1.0f / a;
-    out.slow = ray_sphere::needs_double(k.c, k.oo, rr).bits() & used;
     const F disc = ray_sphere::discriminant(o, d, k.b, F(a), F(inv_a), rr);
-    out.hit = ~(disc < F(0.0f)).bits() & used & ~out.slow;
+    out.hit = ~(disc < F(0.0f)).bits() & solve;
     if (out.hit == 0) return out;  // no root to find: spare the square root and division
     F t0, t1;
     ray_sphere::roots(k.b, k.c, disc, F(inv_a), t0, t1);

@@ -117,7 +117,7 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, float weight, TraceCounters
     const bool hit_object =
         primary ? primary->first : nearest_hit(scene_, ray, 0.0f, t_max, hit, counters.tests);
     if (hit_object) t_max = hit.t;
-    const int light = nearest_light(ray, t_max, counters);
+    const int light = visible_lights_.empty() ? -1 : nearest_light(ray, t_max, counters);
     distance = t_max;
     if (tree) {
         RayTreeNode& n = tree->nodes[self];

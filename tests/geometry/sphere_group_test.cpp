@@ -23,7 +23,7 @@ bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 
 
 TEST(SphereGroup, FourAtOnceEqualsOneByOneBitForBit) {
     Rng rng(11);
-    int hits = 0, slow = 0, compared = 0;
+    int hits = 0, slow = 0, compared = 0, behind = 0;
     for (int scene = 0; scene < 200; ++scene) {
         // 1 to 8 spheres of very different sizes (two groups when more than four)
         std::vector<Shape> spheres(1 + scene % 8);
@@ -76,6 +76,22 @@ TEST(SphereGroup, FourAtOnceEqualsOneByOneBitForBit) {
                         << "scene " << scene << " ray " << k << " lane " << lane << ": " << t0
                         << ", " << t1 << " vs " << fast.t0[lane] << ", " << fast.t1[lane];
                 }
+                // Ahead only (the scene queries): the same lanes and bits, less those whose
+                // roots are both at t ≤ 0, which no query with t_min ≥ 0 takes.
+                const SphereGroupRoots ahead = sphere_group_roots(g, r, true);
+                ASSERT_EQ(ahead.slow, fast.slow);
+                ASSERT_EQ(ahead.hit & ~fast.hit, 0u);
+                for (int lane = 0; lane < g.count; ++lane) {
+                    const unsigned bit = 1u << lane;
+                    if (ahead.hit & bit) {
+                        ASSERT_TRUE(same_bits(ahead.t0[lane], fast.t0[lane]) &&
+                                    same_bits(ahead.t1[lane], fast.t1[lane]));
+                    } else if (fast.hit & bit) {
+                        ++behind;
+                        ASSERT_LE(fast.t0[lane], 0.0f) << "scene " << scene << " ray " << k;
+                        ASSERT_LE(fast.t1[lane], 0.0f) << "scene " << scene << " ray " << k;
+                    }
+                }
                 EXPECT_EQ(fast.hit >> g.count, 0u);  // unused lanes are never reported
                 EXPECT_EQ(fast.slow >> g.count, 0u);
                 // the portable version agrees too, and leaves nothing to the caller
@@ -86,7 +102,8 @@ TEST(SphereGroup, FourAtOnceEqualsOneByOneBitForBit) {
         }
     }
     EXPECT_GT(hits, compared / 10);
-    EXPECT_GT(slow, compared / 50);  // rays from on a sphere, and the zero direction
+    EXPECT_GT(slow, compared / 50);    // rays from on a sphere, and the zero direction
+    EXPECT_GT(behind, compared / 50);  // rays leaving a sphere, and spheres behind an origin
 }
 
 }  // namespace
