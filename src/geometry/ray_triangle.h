@@ -10,6 +10,10 @@
 #include "geometry/mesh.h"
 #include "math/ray.h"
 
+// intersect_triangle_lanes() takes and returns lane vectors by value between inline functions,
+// eight wide even where the build has no AVX (see math/lane8.h): no ABI is crossed.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 namespace luz {
 
 /// A ray prepared once for the watertight ray–triangle test: the dominant axis kz of the

@@ -94,8 +94,9 @@ TEST_P(RegionTest, PixelsAreThoseOfTheWholeRender) {
         EXPECT_EQ(part.stats.height, r.height());
         EXPECT_EQ(part.stats.region[2], r.x1);
         // Only the region's tiles are rendered: a small rectangle traces fewer rays.
-        if (r.width() * r.height() * 4 < 83 * 61 && d.render.pipeline != Pipeline::zbuffer)
+        if (r.width() * r.height() * 4 < 83 * 61 && d.render.pipeline != Pipeline::zbuffer) {
             EXPECT_LT(part.stats.rays_primary, whole.stats.rays_primary) << where;
+        }
     }
 }
 

@@ -355,8 +355,11 @@ TEST(WideBvh, SlabDistancesAsIntegersGiveTheFloatAnswers) {
         const int m_int = bvh_detail::hit_wide<8>(n, as_ints, t_min, t_max, e_int);
         const int m_float = bvh_detail::hit_wide<8>(n, as_floats, t_min, t_max, e_float);
         ASSERT_EQ(m_int, m_float) << i;
-        for (int k = 0; k < 8; ++k)
-            if ((m_int >> k) & 1) EXPECT_EQ(e_int[k], e_float[k]) << i << " " << k;
+        for (int k = 0; k < 8; ++k) {
+            if ((m_int >> k) & 1) {
+                EXPECT_EQ(e_int[k], e_float[k]) << i << " " << k;
+            }
+        }
         hits += __builtin_popcount(static_cast<unsigned>(m_int));
     }
     EXPECT_GT(hits, 10000);

@@ -117,7 +117,9 @@ TEST_F(CommandsMpi, ThreadsBeyondTheBindingAreWarnedOf) {
     unbound.insert(unbound.begin() + 1, "none");
     const RunResult free = run_program("mpirun", unbound, dir_);
     ASSERT_EQ(free.status, 0) << free.err;
-    if (std::thread::hardware_concurrency() >= 2) EXPECT_EQ(free.err, "");
+    if (std::thread::hardware_concurrency() >= 2) {
+        EXPECT_EQ(free.err, "");
+    }
 }
 
 // Not an MpiTest: it holds wherever luz is built, with or without Open MPI.

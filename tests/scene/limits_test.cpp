@@ -108,8 +108,12 @@ TEST(Limits, RangesHoldTheirSliderRanges) {
         const Limit& l = row.limit;
         EXPECT_LE(l.ui_lo, l.ui_hi);
         EXPECT_TRUE(l.contains(l.ui_lo) && l.contains(l.ui_hi));
-        if (std::isfinite(l.lo) && !l.lo_open) EXPECT_EQ(l.ui_lo, l.lo);
-        if (std::isfinite(l.hi) && !l.hi_open) EXPECT_EQ(l.ui_hi, l.hi);
+        if (std::isfinite(l.lo) && !l.lo_open) {
+            EXPECT_EQ(l.ui_lo, l.lo);
+        }
+        if (std::isfinite(l.hi) && !l.hi_open) {
+            EXPECT_EQ(l.ui_hi, l.hi);
+        }
     }
 }
 
