@@ -66,7 +66,8 @@ inline SphereGroupRoots sphere_group_roots_one_by_one(const SphereGroup& g, cons
 /// lane whose two roots are both ≤ 0 is not reported either: an origin outside the sphere
 /// (c > 0) moving away from its centre (b > 0) gives q = −(b + √disc) < 0, so c/q and q/a are
 /// both negative (or −0). Rays spawned on a sphere leave it so; when no other lane is near,
-/// their test ends before the square root and division.
+/// their test ends before the square root and division. (The portable version reports such
+/// lanes all the same: the caller's t_min discards their roots alike.)
 inline SphereGroupRoots sphere_group_roots(const SphereGroup& g, const Ray& r,
                                            bool ahead_only = false) {
     SphereGroupRoots out;
