@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <utility>
 
@@ -31,10 +32,11 @@ AntialiasDesc adaptive(float threshold, int max_level) {
     return aa;
 }
 
-/// Renders a w×h image of `colour(x, y)` with `aa`.
-template <class Colour>
-Image run(const AntialiasDesc& aa, int w, int h, Colour colour, SamplerCounts* counts = nullptr,
-          int threads = 1, AaMask* mask = nullptr) {
+/// Renders a w×h image of `colour(x, y)` with `aa`. One type of colour function for every
+/// test: sample_image() is compiled once, not once per test's lambda.
+using ColourFunction = std::function<Rgb(float, float)>;
+Image run(const AntialiasDesc& aa, int w, int h, const ColourFunction& colour,
+          SamplerCounts* counts = nullptr, int threads = 1, AaMask* mask = nullptr) {
     Image out(w, h);
     RenderControl control;
     control.threads = threads;
