@@ -8,6 +8,8 @@
 
 #include "geometry/hit.h"
 #include "geometry/mesh.h"
+#include "math/lane4.h"
+#include "math/lane8.h"
 #include "math/ray.h"
 
 // intersect_triangle_lanes() takes and returns lane vectors by value between inline functions,
@@ -102,16 +104,16 @@ inline I intersect_triangle_lanes(const F (&x)[3], const F (&y)[3], const F (&z)
     const F Cx = (x[2] - ox) - Sx * Cz, Cy = (y[2] - oy) - Sy * Cz;
     const F U = Cx * By - Cy * Bx, V = Ax * Cy - Ay * Cx, W = Bx * Ay - By * Ax;
     const F zero = F{};
-    scalar = (U == zero) | (V == zero) | (W == zero);
-    const I outside =
-        ((U < zero) | (V < zero) | (W < zero)) & ((U > zero) | (V > zero) | (W > zero));
+    scalar = lane_eq(U, zero) | lane_eq(V, zero) | lane_eq(W, zero);
+    const I outside = (lane_lt(U, zero) | lane_lt(V, zero) | lane_lt(W, zero)) &
+                      (lane_gt(U, zero) | lane_gt(V, zero) | lane_gt(W, zero));
     const F det = U + V + W;
     const F T = U * (Sz * Az) + V * (Sz * Bz) + W * (Sz * Cz);
     const F inv_det = (zero + 1.0f) / det;
     t = T * inv_det;
     b1 = V * inv_det;
     b2 = W * inv_det;
-    return ~outside & (det != zero) & (t > t_min) & (t < t_max);
+    return ~outside & lane_ne(det, zero) & lane_gt(t, t_min) & lane_lt(t, t_max);
 }
 
 /// The nearest hit among all triangles of `mesh` (in index order; ties keep the lowest index):

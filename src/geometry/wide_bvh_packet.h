@@ -29,7 +29,7 @@ struct BoxRays {
         for (int a = 0; a < 3; ++a) {
             o[a] = p.o[a];
             inv[a] = lanes(1.0f) / p.d[a];
-            negative[a] = inv[a] < lanes(0.0f);
+            negative[a] = lane_lt(inv[a], lanes(0.0f));
         }
     }
 };
@@ -42,15 +42,15 @@ inline Lane8i hit_child(const Bvh8::Node& n, int k, const BoxRays& r, Lane8f t_m
     const Lane8f scale = lanes(bvh_detail::kExitScale);
     for (int a = 0; a < 3; ++a) {
         const Lane8f lo = lanes(n.lo[a][k]), hi = lanes(n.hi[a][k]);
-        const Lane8f near_plane = r.negative[a] ? hi : lo;
-        const Lane8f far_plane = r.negative[a] ? lo : hi;
+        const Lane8f near_plane = lane_select(r.negative[a], hi, lo);
+        const Lane8f far_plane = lane_select(r.negative[a], lo, hi);
         const Lane8f t0 = (near_plane - r.o[a]) * r.inv[a];
         const Lane8f t1 = ((far_plane - r.o[a]) * r.inv[a]) * scale;
-        tn = t0 > tn ? t0 : tn;  // NaN → tn
-        tf = t1 < tf ? t1 : tf;  // NaN → tf
+        tn = lane_select(lane_gt(t0, tn), t0, tn);  // NaN → tn
+        tf = lane_select(lane_lt(t1, tf), t1, tf);  // NaN → tf
     }
     entry = tn;
-    return tn <= tf;
+    return lane_le(tn, tf);
 }
 
 /// with_margin() lane by lane.
@@ -116,7 +116,7 @@ void nearest_packet(const Bvh8& bvh, const RayPacket& p, unsigned active, float 
         for (;;) {
             if (top == 0) return;
             Entry& s = stack[--top];
-            s.lanes &= lane_bits(s.entry <= with_margin(load_lanes(t_max)));
+            s.lanes &= lane_bits(lane_le(s.entry, with_margin(load_lanes(t_max))));
             if (s.lanes != 0) {
                 cur = s;
                 break;

@@ -20,6 +20,14 @@ typedef int32_t Lane4i __attribute__((vector_size(16)));
 
 /// x in every lane.
 inline Lane4f lanes4(float x) { return Lane4f{x, x, x, x}; }
+/// The comparisons of math/lane8.h for four lanes (the operators: GCC compiles them well here),
+/// so that code written for either lane type (ray_triangle.h) compares alike.
+inline Lane4i lane_lt(Lane4f a, Lane4f b) { return a < b; }
+inline Lane4i lane_le(Lane4f a, Lane4f b) { return a <= b; }
+inline Lane4i lane_gt(Lane4f a, Lane4f b) { return a > b; }
+inline Lane4i lane_ge(Lane4f a, Lane4f b) { return a >= b; }
+inline Lane4i lane_eq(Lane4f a, Lane4f b) { return a == b; }
+inline Lane4i lane_ne(Lane4f a, Lane4f b) { return a != b; }
 /// Bit k set where lane k of `m` is true.
 inline unsigned lane_bits4(Lane4i m) {
 #if defined(__SSE2__)

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -30,14 +31,114 @@ typedef float Lane8fUnaligned __attribute__((vector_size(32), aligned(4), may_al
 /// Eight floats at p (32 bytes of any 4-byte-aligned object), and back.
 inline Lane8f load_lanes(const void* p) { return *static_cast<const Lane8fUnaligned*>(p); }
 inline void store_lanes(void* p, Lane8f v) { *static_cast<Lane8fUnaligned*>(p) = v; }
+
+// Without AVX, GCC 12 compiles the comparisons of eight-lane vectors, their `?:` and some of
+// their shuffles lane by lane, with scalar compares, branches and stores. The lane code
+// therefore compares with lane_lt() … lane_ne() and selects with lane_select(): on an SSE2
+// build they work on the vector's two 16-byte halves (one instruction each), with AVX they are
+// the operators themselves. Arithmetic and bitwise operators compile well on either.
+#if defined(__SSE2__) && !defined(__AVX__)
+#define LUZ_LANE8_HALVES 1
+namespace lane8_detail {
+struct HalvesF {
+    __m128 lo, hi;
+};
+struct HalvesI {
+    __m128i lo, hi;
+};
+inline HalvesF halves(Lane8f a) {
+    HalvesF h;
+    std::memcpy(&h, &a, sizeof h);
+    return h;
+}
+inline HalvesI halves(Lane8i a) {
+    HalvesI h;
+    std::memcpy(&h, &a, sizeof h);
+    return h;
+}
+template <class V, class H>
+inline V whole(H lo, H hi) {
+    V v;
+    std::memcpy(&v, &lo, sizeof lo);
+    std::memcpy(reinterpret_cast<char*>(&v) + sizeof lo, &hi, sizeof hi);
+    return v;
+}
+/// op(a, b) on each half of two float vectors, as a mask.
+template <class Op>
+inline Lane8i compare(Lane8f a, Lane8f b, Op op) {
+    const HalvesF x = halves(a), y = halves(b);
+    return whole<Lane8i>(op(x.lo, y.lo), op(x.hi, y.hi));
+}
+template <class Op>
+inline Lane8i compare(Lane8i a, Lane8i b, Op op) {
+    const HalvesI x = halves(a), y = halves(b);
+    return whole<Lane8i>(op(x.lo, y.lo), op(x.hi, y.hi));
+}
+}  // namespace lane8_detail
+#endif
+
+/// a < b, a <= b, a > b, a >= b, a == b, a != b lane by lane, as masks (IEEE: only != holds
+/// for a NaN).
+inline Lane8i lane_lt(Lane8f a, Lane8f b) {
+#if defined(LUZ_LANE8_HALVES)
+    return lane8_detail::compare(a, b, [](__m128 x, __m128 y) { return _mm_cmplt_ps(x, y); });
+#else
+    return a < b;
+#endif
+}
+inline Lane8i lane_le(Lane8f a, Lane8f b) {
+#if defined(LUZ_LANE8_HALVES)
+    return lane8_detail::compare(a, b, [](__m128 x, __m128 y) { return _mm_cmple_ps(x, y); });
+#else
+    return a <= b;
+#endif
+}
+inline Lane8i lane_gt(Lane8f a, Lane8f b) { return lane_lt(b, a); }
+inline Lane8i lane_ge(Lane8f a, Lane8f b) { return lane_le(b, a); }
+inline Lane8i lane_eq(Lane8f a, Lane8f b) {
+#if defined(LUZ_LANE8_HALVES)
+    return lane8_detail::compare(a, b, [](__m128 x, __m128 y) { return _mm_cmpeq_ps(x, y); });
+#else
+    return a == b;
+#endif
+}
+inline Lane8i lane_ne(Lane8f a, Lane8f b) {
+#if defined(LUZ_LANE8_HALVES)
+    return lane8_detail::compare(a, b, [](__m128 x, __m128 y) { return _mm_cmpneq_ps(x, y); });
+#else
+    return a != b;
+#endif
+}
+/// The same for 32-bit integers.
+inline Lane8i lane_lt(Lane8i a, Lane8i b) {
+#if defined(LUZ_LANE8_HALVES)
+    return lane8_detail::compare(a, b, [](__m128i x, __m128i y) { return _mm_cmplt_epi32(x, y); });
+#else
+    return a < b;
+#endif
+}
+inline Lane8i lane_gt(Lane8i a, Lane8i b) { return lane_lt(b, a); }
+inline Lane8i lane_ge(Lane8i a, Lane8i b) { return ~lane_lt(a, b); }
+inline Lane8i lane_le(Lane8i a, Lane8i b) { return ~lane_lt(b, a); }
+inline Lane8i lane_eq(Lane8i a, Lane8i b) {
+#if defined(LUZ_LANE8_HALVES)
+    return lane8_detail::compare(a, b, [](__m128i x, __m128i y) { return _mm_cmpeq_epi32(x, y); });
+#else
+    return a == b;
+#endif
+}
+inline Lane8i lane_ne(Lane8i a, Lane8i b) { return ~lane_eq(a, b); }
+/// x in every lane.
+inline Lane8i lanes_i(int32_t x) { return Lane8i{} + x; }
+
 /// Bit k set where lane k of `m` is true.
 inline unsigned lane_bits(Lane8i m) {
 #if defined(__AVX__)
     return static_cast<unsigned>(_mm256_movemask_ps((__m256)m));
 #elif defined(__SSE2__)
-    const __m128 lo = (__m128)__builtin_shufflevector(m, m, 0, 1, 2, 3);
-    const __m128 hi = (__m128)__builtin_shufflevector(m, m, 4, 5, 6, 7);
-    return static_cast<unsigned>(_mm_movemask_ps(lo) | (_mm_movemask_ps(hi) << 4));
+    const lane8_detail::HalvesI h = lane8_detail::halves(m);
+    return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(h.lo)) |
+                                 (_mm_movemask_ps(_mm_castsi128_ps(h.hi)) << 4));
 #else
     unsigned bits = 0;
     for (int k = 0; k < kPacketLanes; ++k) bits |= (m[k] != 0 ? 1u : 0u) << k;
@@ -47,7 +148,7 @@ inline unsigned lane_bits(Lane8i m) {
 /// The lanes of `mask` as a mask vector.
 inline Lane8i lane_mask(unsigned mask) {
     const Lane8i bit = {1, 2, 4, 8, 16, 32, 64, 128};
-    return ((Lane8i{} + static_cast<int32_t>(mask)) & bit) != 0;
+    return lane_ne(lanes_i(static_cast<int32_t>(mask)) & bit, Lane8i{});
 }
 
 /// √x lane by lane (IEEE, as std::sqrt).
@@ -55,9 +156,8 @@ inline Lane8f lane_sqrt(Lane8f x) {
 #if defined(__AVX__)
     return (Lane8f)_mm256_sqrt_ps((__m256)x);
 #elif defined(__SSE2__)  // the two halves, each in one register
-    const __m128 lo = _mm_sqrt_ps((__m128)__builtin_shufflevector(x, x, 0, 1, 2, 3));
-    const __m128 hi = _mm_sqrt_ps((__m128)__builtin_shufflevector(x, x, 4, 5, 6, 7));
-    return (Lane8f)__builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+    const lane8_detail::HalvesF h = lane8_detail::halves(x);
+    return lane8_detail::whole<Lane8f>(_mm_sqrt_ps(h.lo), _mm_sqrt_ps(h.hi));
 #else
     for (int k = 0; k < kPacketLanes; ++k) x[k] = __builtin_sqrtf(x[k]);
     return x;

@@ -234,7 +234,7 @@ void rasterize_triangle_lanes(bool persp, const RasterTriangle& r,
             w1 += ex8[1];
             w2 += ex8[2];
             const int n = std::min(8, px_end - px + 1);  // lanes within the span
-            const Lane8i inside = ((W0 | W1 | W2) >= 0) & (index < n);
+            const Lane8i inside = lane_ge(W0 | W1 | W2, Lane8i{}) & lane_lt(index, lanes_i(n));
             const unsigned in = lane_bits(inside);
             if (!in) continue;
             // Screen-space barycentrics λ (without the top-left bias), as the reference.
@@ -256,7 +256,7 @@ void rasterize_triangle_lanes(bool persp, const RasterTriangle& r,
             depth = b0 * s.d[0] + b1 * s.d[1] + b2 * s.d[2];
             Fragment* f = row + px;
             const Lane8f held = load_lanes(row_depths + px);  // lanes ≥ n: padding or next row
-            const Lane8i nearer = (depth < held) & inside;
+            const Lane8i nearer = lane_lt(depth, held) & inside;
             unsigned pass = lane_bits(nearer);
             if (!pass) continue;
             store_lanes(row_depths + px, lane_select(nearer, depth, held));

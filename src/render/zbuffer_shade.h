@@ -162,7 +162,7 @@ inline void shade_fragments_lanes(const ZbufferFrame& f, const Lighting& lightin
         Lane8f vp[3][3] = {}, vn[3][3] = {};  // [vertex][component]
         for (unsigned pending = active; pending;) {
             const int32_t t = triangle[__builtin_ctz(pending)];
-            const Lane8i same = triangle == t;
+            const Lane8i same = lane_eq(triangle, lanes_i(t));
             pending &= ~lane_bits(same);
             const uint32_t* idx = &mesh.indices[3 * static_cast<size_t>(t)];
             for (int i = 0; i < 3; ++i) {

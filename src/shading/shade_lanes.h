@@ -36,17 +36,17 @@ inline Lane8f dot(const Lane8f a[3], const Lane8f b[3]) {
     const Lane8f zero = lanes(0.0f), one = lanes(1.0f);
 
     // Two-sided normals (SPEC §1.3): N faces the viewer.
-    const Lane8i flipped = dot(p.N, p.S) < zero;
+    const Lane8i flipped = lane_lt(dot(p.N, p.S), zero);
     Lane8f N[3];
     for (int a = 0; a < 3; ++a) N[a] = lane_select(flipped, -p.N[a], p.N[a]);
 
     const float Ia[3] = {lighting.Ia.x, lighting.Ia.y, lighting.Ia.z};
     for (int a = 0; a < 3; ++a) I[a] = Ia[a] * p.ka[a];  // Ia·Ka
     // max_component(Ks) > 0: the specular term needs a power
-    const Lane8f ks_max =
-        lane_select(p.ks[0] > p.ks[1], lane_select(p.ks[0] > p.ks[2], p.ks[0], p.ks[2]),
-                    lane_select(p.ks[1] > p.ks[2], p.ks[1], p.ks[2]));
-    const Lane8i has_specular = ks_max > zero;
+    const Lane8f ks_max = lane_select(lane_gt(p.ks[0], p.ks[1]),
+                                      lane_select(lane_gt(p.ks[0], p.ks[2]), p.ks[0], p.ks[2]),
+                                      lane_select(lane_gt(p.ks[1], p.ks[2]), p.ks[1], p.ks[2]));
+    const Lane8i has_specular = lane_gt(ks_max, zero);
 
     for (const Light& light : lighting.lights) {
         const float Lp[3] = {light.position.x, light.position.y, light.position.z};
@@ -58,7 +58,7 @@ inline Lane8f dot(const Lane8f a[3], const Lane8f b[3]) {
         Lane8f L[3];
         for (int a = 0; a < 3; ++a) L[a] = to_light[a] * inv_d;
         const Lane8f N_dot_L = dot(N, L);
-        const Lane8i lit = N_dot_L > zero;
+        const Lane8i lit = lane_gt(N_dot_L, zero);
         if (!(lane_bits(lit) & active)) continue;
         const Lane8f cos_theta = N_dot_L;  // cosθ_j = max(0, N·L_j) where lit
         Lane8f diffuse[3], specular[3] = {zero, zero, zero};
@@ -71,7 +71,7 @@ inline Lane8f dot(const Lane8f a[3], const Lane8f b[3]) {
             const Lane8f two_N_dot_L = 2.0f * N_dot_L;
             for (int a = 0; a < 3; ++a) R[a] = N[a] * two_N_dot_L - L[a];
             const Lane8f R_dot_S = dot(R, p.S);
-            const Lane8f cos_alpha = lane_select(R_dot_S > zero, R_dot_S, zero);
+            const Lane8f cos_alpha = lane_select(lane_gt(R_dot_S, zero), R_dot_S, zero);
             const Lane8f att = one / (d + lighting.K);
             Lane8f Il_att[3];
             for (int a = 0; a < 3; ++a) {

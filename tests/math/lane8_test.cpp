@@ -1,5 +1,6 @@
 // The eight-lane helpers of math/lane8.h against their lane-by-lane meaning: masks to vectors and
-// back for every mask, IEEE square roots, and loads and stores at any 4-byte-aligned address
+// back for every mask, IEEE square roots, the comparisons (floats with NaN, ±0 and infinities;
+// integers to the extremes) and selections, and loads and stores at any 4-byte-aligned address
 // that touch exactly their 32 bytes.
 #include "math/lane8.h"
 
@@ -49,6 +50,63 @@ TEST(Lane8, SquareRootIsStdSqrtInEveryLaneBitForBit) {
             }
         }
     }
+}
+
+TEST(Lane8, FloatComparisonsAreTheScalarOnesInEveryLane) {
+    const float inf = std::numeric_limits<float>::infinity();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float values[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.3f, 1e-40f, -3e38f, inf, -inf, nan, 2.5f};
+    constexpr int n = sizeof values / sizeof values[0];
+    const auto mask = [](bool b) { return b ? -1 : 0; };
+    for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+            Lane8f a, b;
+            for (int k = 0; k < kPacketLanes; ++k) {  // every pair, in every lane
+                a[k] = values[(i + k) % n];
+                b[k] = values[(j + 3 * k) % n];
+            }
+            const Lane8i lt = lane_lt(a, b), le = lane_le(a, b), gt = lane_gt(a, b),
+                         ge = lane_ge(a, b), eq = lane_eq(a, b), ne = lane_ne(a, b);
+            const Lane8f min = lane_select(lt, a, b);
+            for (int k = 0; k < kPacketLanes; ++k) {
+                const float x = a[k], y = b[k];
+                EXPECT_EQ(lt[k], mask(x < y)) << x << " < " << y;
+                EXPECT_EQ(le[k], mask(x <= y)) << x << " <= " << y;
+                EXPECT_EQ(gt[k], mask(x > y)) << x << " > " << y;
+                EXPECT_EQ(ge[k], mask(x >= y)) << x << " >= " << y;
+                EXPECT_EQ(eq[k], mask(x == y)) << x << " == " << y;
+                EXPECT_EQ(ne[k], mask(x != y)) << x << " != " << y;
+                EXPECT_EQ(std::bit_cast<uint32_t>(min[k]), std::bit_cast<uint32_t>(x < y ? x : y));
+            }
+        }
+    }
+}
+
+TEST(Lane8, IntegerComparisonsAreTheScalarOnesInEveryLane) {
+    const int32_t values[] = {0, 1, -1, 7, -7, INT32_MAX, INT32_MIN, 1 << 20, -(1 << 20)};
+    constexpr int n = sizeof values / sizeof values[0];
+    const auto mask = [](bool b) { return b ? -1 : 0; };
+    for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+            Lane8i a, b;
+            for (int k = 0; k < kPacketLanes; ++k) {
+                a[k] = values[(i + k) % n];
+                b[k] = values[(j + 5 * k) % n];
+            }
+            const Lane8i lt = lane_lt(a, b), le = lane_le(a, b), gt = lane_gt(a, b),
+                         ge = lane_ge(a, b), eq = lane_eq(a, b), ne = lane_ne(a, b);
+            for (int k = 0; k < kPacketLanes; ++k) {
+                const int32_t x = a[k], y = b[k];
+                EXPECT_EQ(lt[k], mask(x < y)) << x << " < " << y;
+                EXPECT_EQ(le[k], mask(x <= y)) << x << " <= " << y;
+                EXPECT_EQ(gt[k], mask(x > y)) << x << " > " << y;
+                EXPECT_EQ(ge[k], mask(x >= y)) << x << " >= " << y;
+                EXPECT_EQ(eq[k], mask(x == y)) << x << " == " << y;
+                EXPECT_EQ(ne[k], mask(x != y)) << x << " != " << y;
+            }
+        }
+    }
+    for (int k = 0; k < kPacketLanes; ++k) EXPECT_EQ(lanes_i(-42)[k], -42);
 }
 
 TEST(Lane8, LoadsAndStoresAtEveryFourByteOffsetTouchOnlyTheirBytes) {
