@@ -115,20 +115,21 @@ inline void shade_fragments_lanes(const ZbufferFrame& f, const Lighting& lightin
     Lane8f depth, b1, b2;
     Lane8i triangle;
     load_fragments(frags, depth, triangle, b1, b2);
-    const unsigned covered = lane_bits(triangle != static_cast<int32_t>(kNoTriangle));
+    const unsigned covered =
+        lane_bits(lane_ne(triangle, lanes_i(static_cast<int32_t>(kNoTriangle))));
     if (!covered) {
         for (int k = 0; k < kPacketLanes; ++k) out[k] = background;
         return;
     }
     // The lanes shaded side by side: their materials' constants, broadcast when they share one.
     const int32_t first = triangle[__builtin_ctz(covered)];
-    triangle = lane_select(lane_mask(covered), triangle, Lane8i{} + first);  // uncovered: first's
+    triangle = lane_select(lane_mask(covered), triangle, lanes_i(first));  // uncovered: first's
     const TriangleMesh& mesh = f.geometry.mesh;
     const Lane8i material = gather_lanes(f.geometry.triangle_material.data(), triangle);
     const std::vector<Material>& materials = f.settings.materials;
     ShadingLanes p;
     unsigned active = 0;
-    if (lane_bits(material == material[0]) == 0xFFu) {
+    if (lane_bits(lane_eq(material, lanes_i(material[0]))) == 0xFFu) {
         const int32_t m = material[0];
         if (m >= 0 && shades_in_lanes(materials[m])) {
             active = covered;
