@@ -105,9 +105,9 @@ inline void store_colours(Rgb* out, Lane8f r, Lane8f g, Lane8f b) {
 }  // namespace zbuffer_detail
 
 /// shade_fragment() of eight consecutive fragments frags[0 … 7] into out[0 … 7], the objects'
-/// fragments whose material shade_lanes() handles side by side: each point built as
-/// fragment_point() builds it, then shade_lanes(). The rest (background, light spheres, other
-/// materials) as shade_fragment() gives them. Every colour has shade_fragment()'s bits.
+/// fragments side by side: each point built as fragment_point() builds it (a checker's Ka and
+/// Kd chosen per lane), then shade_lanes(). The rest (background, light spheres) as
+/// shade_fragment() gives them. Every colour has shade_fragment()'s bits.
 inline void shade_fragments_lanes(const ZbufferFrame& f, const Lighting& lighting,
                                   const Fragment* frags, Rgb* out, RenderStats& stats) {
     using namespace zbuffer_detail;
@@ -129,16 +129,22 @@ inline void shade_fragments_lanes(const ZbufferFrame& f, const Lighting& lightin
     const std::vector<Material>& materials = f.settings.materials;
     ShadingLanes p;
     unsigned active = 0;
+    unsigned checkered = 0;  // lanes whose Ka, Kd a checker chooses, once P is known
+    const auto is_schlick = [](const Material& m) {
+        return m.reflectance == Reflectance::schlick ? -1 : 0;
+    };
     if (lane_bits(lane_eq(material, lanes_i(material[0]))) == 0xFFu) {
         const int32_t m = material[0];
-        if (m >= 0 && shades_in_lanes(materials[m])) {
+        if (m >= 0) {
             active = covered;
+            if (materials[m].checker) checkered = covered;
             for (int a = 0; a < 3; ++a) {
                 p.ka[a] = lanes(materials[m].ka[a]);
                 p.kd[a] = lanes(materials[m].kd[a]);
                 p.ks[a] = lanes(materials[m].ks[a]);
             }
             p.n = lanes(materials[m].n);
+            p.schlick = lanes_i(is_schlick(materials[m]));
         }
     } else {
         for (int a = 0; a < 3; ++a) p.ka[a] = p.kd[a] = p.ks[a] = lanes(0.0f);
@@ -146,14 +152,16 @@ inline void shade_fragments_lanes(const ZbufferFrame& f, const Lighting& lightin
         for (unsigned c = covered; c; c &= c - 1) {
             const int k = __builtin_ctz(c);
             const int32_t m = material[k];
-            if (m < 0 || !shades_in_lanes(materials[m])) continue;
+            if (m < 0) continue;  // a light sphere
             active |= 1u << k;
+            if (materials[m].checker) checkered |= 1u << k;
             for (int a = 0; a < 3; ++a) {
                 p.ka[a][k] = materials[m].ka[a];
                 p.kd[a][k] = materials[m].kd[a];
                 p.ks[a][k] = materials[m].ks[a];
             }
             p.n[k] = materials[m].n;
+            p.schlick[k] = is_schlick(materials[m]);
         }
     }
     Lane8f I[3] = {lanes(background.x), lanes(background.y), lanes(background.z)};
@@ -183,6 +191,17 @@ inline void shade_fragments_lanes(const ZbufferFrame& f, const Lighting& lightin
         }
         const Lane8f inv_length = lanes(1.0f) / lane_sqrt(N[0] * N[0] + N[1] * N[1] + N[2] * N[2]);
         for (int a = 0; a < 3; ++a) p.N[a] = N[a] * inv_length;
+        // A checker's cell at P (against the triangle's geometric normal), as shade() picks it.
+        for (unsigned c = checkered; c; c &= c - 1) {
+            const int k = __builtin_ctz(c);
+            const SurfaceConstants sc =
+                surface_constants(materials[material[k]], {p.P[0][k], p.P[1][k], p.P[2][k]},
+                                  f.geometry.triangle_normal[triangle[k]]);
+            for (int a = 0; a < 3; ++a) {
+                p.ka[a][k] = sc.ka[a];
+                p.kd[a][k] = sc.kd[a];
+            }
+        }
         if (f.perspective) {  // S = normalize(eye − P)
             Lane8f to_eye[3];
             for (int a = 0; a < 3; ++a) to_eye[a] = f.camera.position[a] - p.P[a];

@@ -1,7 +1,8 @@
 // shade_lanes(): shade() at eight surface points side by side, for the case the zbuffer meets
-// most: every light seen (no shadow rays), no terms asked for, and materials without a checker
-// whose specular reflectance is the constant Ks. Each lane computes what shade() computes, with
-// the same operations in the same order, so that every lane's colour has shade()'s bits
+// most: every light seen (no shadow rays) and no terms asked for. Any material: Schlick's
+// reflectance is taken in lanes (ShadingLanes::schlick), and a checker's Ka and Kd are the
+// caller's to fill per lane (surface_constants()). Each lane computes what shade() computes,
+// with the same operations in the same order, so that every lane's colour has shade()'s bits
 // (tests/shading/shade_lanes_test.cpp); only cosα^n is taken lane by lane (phong_power()).
 #pragma once
 
@@ -12,16 +13,13 @@ namespace luz {
 
 /// Eight surface points (one per lane) and their materials' constants, by component.
 struct ShadingLanes {
-    Lane8f P[3];  ///< world position
-    Lane8f N[3];  ///< unit shading normal (flipped towards the viewer by shade_lanes())
-    Lane8f S[3];  ///< unit vector from P towards the viewer
-    Lane8f ka[3], kd[3], ks[3], n;
+    Lane8f P[3];          ///< world position
+    Lane8f N[3];          ///< unit shading normal (flipped towards the viewer by shade_lanes())
+    Lane8f S[3];          ///< unit vector from P towards the viewer
+    Lane8f ka[3], kd[3];  ///< surface_constants() at P: a checker's cell already chosen
+    Lane8f ks[3], n;
+    Lane8i schlick{};  ///< lanes whose w(θ) is Schlick's curve from Ks (else Ks itself)
 };
-
-/// Whether shade_lanes() shades material m as shade() does: no checker, constant reflectance.
-inline bool shades_in_lanes(const Material& m) {
-    return !m.checker && m.reflectance == Reflectance::constant;
-}
 
 namespace lanes_detail {
 inline Lane8f dot(const Lane8f a[3], const Lane8f b[3]) {
@@ -42,11 +40,13 @@ inline Lane8f dot(const Lane8f a[3], const Lane8f b[3]) {
 
     const float Ia[3] = {lighting.Ia.x, lighting.Ia.y, lighting.Ia.z};
     for (int a = 0; a < 3; ++a) I[a] = Ia[a] * p.ka[a];  // Ia·Ka
-    // max_component(Ks) > 0: the specular term needs a power
-    const Lane8f ks_max = lane_select(lane_gt(p.ks[0], p.ks[1]),
-                                      lane_select(lane_gt(p.ks[0], p.ks[2]), p.ks[0], p.ks[2]),
-                                      lane_select(lane_gt(p.ks[1], p.ks[2]), p.ks[1], p.ks[2]));
-    const Lane8i has_specular = lane_gt(ks_max, zero);
+    // max_component(w) > 0: the specular term needs a power
+    const auto max_component = [](const Lane8f w[3]) {
+        return lane_select(lane_gt(w[0], w[1]), lane_select(lane_gt(w[0], w[2]), w[0], w[2]),
+                           lane_select(lane_gt(w[1], w[2]), w[1], w[2]));
+    };
+    const bool any_schlick = (lane_bits(p.schlick) & active) != 0;
+    const Lane8i has_ks = lane_gt(max_component(p.ks), zero);
 
     for (const Light& light : lighting.lights) {
         const float Lp[3] = {light.position.x, light.position.y, light.position.z};
@@ -78,7 +78,18 @@ inline Lane8f dot(const Lane8f a[3], const Lane8f b[3]) {
                 Il_att[a] = Il[a] * att;
                 diffuse[a] = (Il_att[a] * p.kd[a]) * cos_theta;
             }
-            // cosα^n lane by lane, where the light is in front and Ks > 0 (else no power)
+            // w(θ_j) (reflectance.h): Ks, or Schlick's Ks + (1 − Ks)·(1 − cosθ_j)^5
+            Lane8f w[3] = {p.ks[0], p.ks[1], p.ks[2]};
+            Lane8i has_specular = has_ks;
+            if (any_schlick) {
+                const Lane8f f = one - cos_theta;
+                const Lane8f f2 = f * f;
+                const Lane8f f5 = f2 * f2 * f;
+                for (int a = 0; a < 3; ++a)
+                    w[a] = lane_select(p.schlick, p.ks[a] + (one - p.ks[a]) * f5, p.ks[a]);
+                has_specular = lane_gt(max_component(w), zero);
+            }
+            // cosα^n lane by lane, where the light is in front and w > 0 (else no power)
             alignas(32) float cos_a[kPacketLanes], n[kPacketLanes], pow_a[kPacketLanes] = {};
             store_lanes(cos_a, cos_alpha);
             store_lanes(n, p.n);
@@ -89,7 +100,7 @@ inline Lane8f dot(const Lane8f a[3], const Lane8f b[3]) {
             const Lane8f power = load_lanes(pow_a);
             const Lane8i specular_lanes = lit & has_specular;
             for (int a = 0; a < 3; ++a)
-                specular[a] = lane_select(specular_lanes, (Il_att[a] * p.ks[a]) * power, zero);
+                specular[a] = lane_select(specular_lanes, (Il_att[a] * w[a]) * power, zero);
         }
         for (int a = 0; a < 3; ++a)
             I[a] = lane_select(lit, I[a] + (diffuse[a] + specular[a]), I[a]);

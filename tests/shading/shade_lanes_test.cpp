@@ -1,6 +1,7 @@
 // shade_lanes() against shade(), lane for lane and bit for bit: random points, normals, viewers,
-// materials (Ks zero or not, many exponents) and lights (in front, behind, several), both
-// models; and only the active lanes are shaded.
+// materials (Ks zero or not, many exponents, Schlick's reflectance, checkers whose Ka and Kd the
+// caller picks per lane) and lights (in front, behind, several), both models; and only the
+// active lanes are shaded.
 #include "shading/shade_lanes.h"
 
 #include <gtest/gtest.h>
@@ -25,6 +26,8 @@ Material random_material(std::mt19937& rng, int i) {
     m.kd = Rgb{u(rng), u(rng), u(rng)};
     m.ks = i % 4 == 0 ? Rgb{0.0f} : (i % 4 == 1 ? Rgb{0.0f, u(rng), 0.0f} : Rgb{u(rng)});
     m.n = exponents[i % 8];
+    if (i % 3 == 2) m.reflectance = Reflectance::schlick;  // w(θ) from Ks, up to 1 at grazing
+    if (i % 5 == 4) m.checker = Checker{0.5f + u(rng), Rgb{u(rng), 0.0f, u(rng)}, Rgb{u(rng)}};
     return m;
 }
 
@@ -40,7 +43,7 @@ void expect_lanes_match(Model model, int light_count, unsigned seed) {
             Light{{pos(rng), pos(rng), pos(rng)}, Rgb{20 * u(rng), 9 * u(rng), 3.0f}, 0});
     const Lighting lighting{model, Rgb{u(rng), u(rng), u(rng)}, 2 * u(rng), lights};
 
-    int compared = 0, lit = 0;
+    int compared = 0, lit = 0, schlick = 0, checker = 0;
     for (int group = 0; group < 400; ++group) {
         ShadingPoint points[kPacketLanes];
         ShadingLanes p;
@@ -52,15 +55,19 @@ void expect_lanes_match(Model model, int light_count, unsigned seed) {
             s.S = random_unit(rng);
             s.material = &materials[(group * 3 + k) % materials.size()];
             const Material& m = *s.material;
+            const SurfaceConstants c = surface_constants(m, s.P, s.Ng);  // the caller's part
             for (int a = 0; a < 3; ++a) {
                 p.P[a][k] = s.P[a];
                 p.N[a][k] = s.N[a];
                 p.S[a][k] = s.S[a];
-                p.ka[a][k] = m.ka[a];
-                p.kd[a][k] = m.kd[a];
+                p.ka[a][k] = c.ka[a];
+                p.kd[a][k] = c.kd[a];
                 p.ks[a][k] = m.ks[a];
             }
             p.n[k] = m.n;
+            p.schlick[k] = m.reflectance == Reflectance::schlick ? -1 : 0;
+            schlick += m.reflectance == Reflectance::schlick;
+            checker += m.checker.has_value();
         }
         const unsigned active = group % 5 == 0 ? 0x5Bu : 0xFFu;
         Lane8f I[3];
@@ -68,7 +75,8 @@ void expect_lanes_match(Model model, int light_count, unsigned seed) {
         for (int k = 0; k < kPacketLanes; ++k) {
             if (!(active >> k & 1u)) continue;
             const Rgb expected = shade(points[k], lighting, AllVisible{});
-            const Rgb ambient = lighting.Ia * points[k].material->ka;
+            const Rgb ambient =
+                lighting.Ia * surface_constants(*points[k].material, points[k].P, points[k].Ng).ka;
             lit += expected != ambient;
             for (int a = 0; a < 3; ++a) {
                 ASSERT_EQ(std::bit_cast<uint32_t>(I[a][k]), std::bit_cast<uint32_t>(expected[a]))
@@ -79,6 +87,8 @@ void expect_lanes_match(Model model, int light_count, unsigned seed) {
         }
     }
     EXPECT_GT(compared, 2900);
+    EXPECT_GT(schlick, 800);  // both kinds of w(θ), with and without checkers, were compared
+    EXPECT_GT(checker, 400);
     if (light_count > 0) {
         EXPECT_GT(lit, compared / 4);  // the lights' terms were compared, not only ambient
     } else {
@@ -97,16 +107,6 @@ TEST(ShadeLanes, LambertMatchesShadeBitForBit) {
 }
 
 TEST(ShadeLanes, NoLightsGiveTheAmbientTerm) { expect_lanes_match(Model::phong, 0, 5); }
-
-TEST(ShadeLanes, ShadesOnlyConstantReflectanceWithoutChecker) {
-    Material m;
-    EXPECT_TRUE(shades_in_lanes(m));
-    m.reflectance = Reflectance::schlick;
-    EXPECT_FALSE(shades_in_lanes(m));
-    m.reflectance = Reflectance::constant;
-    m.checker = Checker{};
-    EXPECT_FALSE(shades_in_lanes(m));
-}
 
 }  // namespace
 }  // namespace luz
