@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/ray_sphere.h"
+#include "shading/shade_lanes.h"
 
 namespace luz {
 
@@ -86,7 +87,7 @@ Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& 
 template <bool kRecord, bool kTerms>
 Rgb RayTracer::trace_impl(const Ray& ray, int depth, float weight, TraceCounters& counters,
                           float& distance, RayTree* tree_in, TermSample* terms_in,
-                          const std::pair<bool, Hit>* primary) const {
+                          const std::pair<bool, Hit>* primary, const ShadedHit* shaded) const {
     // Cancelled: return at once, so that even an exploding ray tree stops within a moment (a
     // relaxed load per ray: no measurable cost).
     if (cancel_ && cancel_->load(std::memory_order_relaxed)) {
@@ -139,7 +140,7 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, float weight, TraceCounters
     // The local model at P, with S = −ray.direction and shadow rays (raytrace).
     const Shape& shape = scene_.shapes[hit.shape];
     const Material& m = desc.materials[material_at(shape, hit)];
-    const SurfacePoint sp = surface_at(shape, ray, hit);
+    const SurfacePoint sp = shaded ? shaded->sp : surface_at(shape, ray, hit);
     const Vec3 D = ray.direction;
     const ShadingPoint p{sp.P, sp.N, sp.Ng, -D, &m};
     ShadeTerms terms;
@@ -159,7 +160,9 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, float weight, TraceCounters
         terms_out = &terms;
     }
     Rgb c;
-    if (full_) {
+    if (shaded) {
+        c = shaded->local;
+    } else if (full_) {
         auto visibility = [&](size_t, const Vec3& P, const Vec3& L, float d) {
             ++counters.shadow;
             // The segment P → light j moved by the spawn offset (≤ 1e-4): direction L, length d.
@@ -273,6 +276,39 @@ Rgb RayTracer::sample(float px, float py, TraceCounters& counters) const {
     return c;
 }
 
+void RayTracer::shade_hits(const Ray* rays, const Hit* hits, unsigned which, ShadedHit* out) const {
+    // The points as trace_impl() builds them (a ShadingPoint each), by component; the other
+    // lanes shaded on zeros and not read.
+    ShadingLanes p;
+    for (int a = 0; a < 3; ++a) p.P[a] = p.N[a] = p.S[a] = p.ka[a] = p.kd[a] = p.ks[a] = lanes(0);
+    p.n = lanes(1.0f);
+    for (unsigned left = which; left != 0; left &= left - 1) {
+        const int k = __builtin_ctz(left);
+        const Shape& shape = scene_.shapes[hits[k].shape];
+        const Material& m = settings_.materials[material_at(shape, hits[k])];
+        const SurfacePoint sp = surface_at(shape, rays[k], hits[k]);
+        out[k].sp = sp;
+        const SurfaceConstants c = surface_constants(m, sp.P, sp.Ng);
+        const Vec3 S = -rays[k].direction;
+        for (int a = 0; a < 3; ++a) {
+            p.P[a][k] = sp.P[a];
+            p.N[a][k] = sp.N[a];
+            p.S[a][k] = S[a];
+            p.ka[a][k] = c.ka[a];
+            p.kd[a][k] = c.kd[a];
+            p.ks[a][k] = m.ks[a];
+        }
+        p.n[k] = m.n;
+        p.schlick[k] = m.reflectance == Reflectance::schlick ? -1 : 0;
+    }
+    Lane8f I[3];
+    shade_lanes(p, lighting_, which, I);
+    for (unsigned left = which; left != 0; left &= left - 1) {
+        const int k = __builtin_ctz(left);
+        out[k].local = Rgb{I[0][k], I[1][k], I[2][k]};
+    }
+}
+
 void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& counters, Rgb* out,
                         uint64_t* rays) const {
     for (int first = 0; first < n; first += kMaxPacket) {
@@ -294,6 +330,17 @@ void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& 
             nearest_hits(scene_, camera_rays, m, 0.0f, kInfinity, hits, found, counters.tests);
             if (timed) packet_ns = nanoseconds_since(start);
         }
+        // Raycast: the hits shaded side by side, those of untimed samples (a timed one is
+        // traced whole, as sample() traces it) when no light sphere can come before them.
+        unsigned packed = 0;
+        ShadedHit shaded[kMaxPacket];
+        if (!full_ && visible_lights_.empty() &&
+            !(cancel_ && cancel_->load(std::memory_order_relaxed))) {
+            for (int k = 0; k < m; ++k)
+                if (found[k] && (i0 + static_cast<uint64_t>(k)) % kTimedSampleEvery != 0)
+                    packed |= 1u << k;
+            if (packed != 0) shade_hits(camera_rays, hits, packed, shaded);
+        }
         for (int k = 0; k < m; ++k) {
             const uint64_t before = work_of(counters);
             const bool timed_sample = counters.primary++ % kTimedSampleEvery == 0;
@@ -302,8 +349,9 @@ void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& 
             counters.tests.timing = timed_sample;
             const std::pair<bool, Hit> primary{found[k], hits[k]};
             float distance;
-            out[first + k] = trace_impl<false>(camera_rays[k], 0, 1.0f, counters, distance, nullptr,
-                                               nullptr, &primary);
+            out[first + k] =
+                trace_impl<false>(camera_rays[k], 0, 1.0f, counters, distance, nullptr, nullptr,
+                                  &primary, (packed >> k) & 1u ? &shaded[k] : nullptr);
             counters.tests.timing = false;
             if (timed_sample) {
                 const uint64_t share = packet_ns / static_cast<uint64_t>(m);

@@ -57,6 +57,12 @@ inline Vec3 reflect(const Vec3& D, const Vec3& N) { return D - N * (2 * dot(D, N
 /// reflection.
 bool refract(const Vec3& D, const Vec3& N, float n1, float n2, Vec3& T);
 
+/// A camera hit shaded with its packet (RayTracer::shade_hits()).
+struct ShadedHit {
+    SurfacePoint sp;  ///< surface_at() of the hit
+    Rgb local;        ///< shade() at it
+};
+
 class RayTracer {
   public:
     /// `full`: raytrace (shadow rays, reflection, refraction up to max_depth); otherwise
@@ -97,10 +103,17 @@ class RayTracer {
     /// `weight`: the product of the coefficients that scale this ray (1 for a primary ray).
     /// `primary`: the ray's nearest object hit when the caller has found it already (found,
     /// hit), as nearest_hit() gives it.
+    /// `shaded`: the hit's surface point and local colour, when shade_hits() found them.
     template <bool kRecord, bool kTerms = false>
     Rgb trace_impl(const Ray& ray, int depth, float weight, TraceCounters& counters,
                    float& distance, RayTree* tree_in, TermSample* terms = nullptr,
-                   const std::pair<bool, Hit>* primary = nullptr) const;
+                   const std::pair<bool, Hit>* primary = nullptr,
+                   const ShadedHit* shaded = nullptr) const;
+
+    /// Raycast: shade() at the camera hits `which` (bit k: rays[k], hits[k]) of a packet side
+    /// by side (shade_lanes(), every light seen), into out[k]: the bits trace_impl() finds one
+    /// by one.
+    void shade_hits(const Ray* rays, const Hit* hits, unsigned which, ShadedHit* out) const;
 
     /// The nearest visible light sphere along ray within (0, t_max), or −1.
     int nearest_light(const Ray& ray, float& t_max, TraceCounters& counters) const;
