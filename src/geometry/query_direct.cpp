@@ -211,4 +211,145 @@ float transmittance_direct(const BuiltScene& scene, const Materials& materials, 
     return crossings.product();
 }
 
+void transmittances_direct(const BuiltScene& scene, const Materials& materials,
+                           const SegmentLanes& s, unsigned active, float* T,
+                           IntersectCounters& counters) {
+    // One by one: without SSE2, or with shapes other than world-form spheres and planes.
+    const auto one_by_one = [&](unsigned lanes) {
+        for (; lanes != 0; lanes &= lanes - 1) {
+            const int k = __builtin_ctz(lanes);
+            T[k] = transmittance_direct(scene, materials, s.ray(k), 0.0f, s.t_max[k], counters);
+        }
+    };
+#if defined(__SSE2__)
+    if (!scene.direct_others.empty()) return one_by_one(active);
+    using F = Float4;
+    constexpr int kLanes = 4;
+    for (int first = 0; first < kMaxPacket; first += kLanes) {
+        const unsigned mine = (active >> first) & 0xFu;
+        if (mine == 0) continue;
+        // Lane l holds segment first + l; the lanes not in `mine` hold whatever the caller put
+        // there and are never reported.
+        const Lane3<F> dir{F::load(s.dx + first), F::load(s.dy + first), F::load(s.dz + first)};
+        const F a = dot(dir, dir);  // |d|², as world_sphere_roots() rounds it
+        // |d|² below the pre-test's range, 0 or NaN: world_sphere_roots()'s other paths.
+        const unsigned usual = static_cast<unsigned>(
+            _mm_movemask_ps(_mm_cmpge_ps(a.v, F(ray_sphere::kMinPreTestA).v)));
+        one_by_one((mine & ~usual) << first);
+        unsigned open = mine & usual;  // not blocked yet
+        if (open == 0) continue;
+        const F inv_a = F(1.0f) / a;
+        const Lane3<F> o{F::load(s.ox + first), F::load(s.oy + first), F::load(s.oz + first)};
+        alignas(16) float t_max[kLanes];
+        std::copy(s.t_max + first, s.t_max + first + kLanes, t_max);
+        Crossings crossings[kLanes];
+        for (const SphereGroup& g : scene.sphere_groups) {
+            // transmittance_direct()'s sphere_group_roots() turned round: the four segments
+            // against one sphere at a time, the same steps lane for lane (the same roots). By
+            // sphere: the segments near it, those needing the double path, those with roots.
+            unsigned near[SphereGroup::kLanes], slow[SphereGroup::kLanes], hit[SphereGroup::kLanes];
+            alignas(16) float t0s[SphereGroup::kLanes][kLanes], t1s[SphereGroup::kLanes][kLanes];
+            unsigned near_any = 0;
+            for (int k = 0; k < g.count; ++k) {
+                const F rr(g.rr[k]);
+                const Lane3<F> os{o.x - F(g.cx[k]), o.y - F(g.cy[k]), o.z - F(g.cz[k])};
+                const ray_sphere::Terms<F> q = ray_sphere::terms(os, dir, rr);
+                near[k] = ~ray_sphere::surely_misses(a, q, rr).bits() & open;
+                slow[k] = ray_sphere::needs_double(q.c, q.oo, rr).bits() & open;
+                hit[k] = 0;
+                near_any |= near[k];
+                const unsigned solve = near[k] & ~slow[k];
+                if (solve == 0) continue;
+                const F disc = ray_sphere::discriminant(os, dir, q.b, a, inv_a, rr);
+                hit[k] = ~(disc < F(0.0f)).bits() & solve;
+                if (hit[k] == 0) continue;
+                F t0, t1;
+                ray_sphere::roots(q.b, q.c, disc, inv_a, t0, t1);
+                t0.store(t0s[k]);
+                t1.store(t1s[k]);
+            }
+            // The segments with a root within (0, t_max) or a sphere to test in double take
+            // transmittance_direct()'s steps segment by segment, in its order and with its
+            // counts; the others count g.count tests (as it does: a slow sphere is counted
+            // only where some sphere of the group is near).
+            const F lo(0.0f), hi = F::load(t_max);
+            unsigned one_by_one_lanes = 0;
+            for (int k = 0; k < g.count; ++k) {
+                if (hit[k] == 0) continue;
+                const F t0 = F::load(t0s[k]), t1 = F::load(t1s[k]);
+                const unsigned within =
+                    ((lo < t0).bits() & (t0 < hi).bits()) | ((lo < t1).bits() & (t1 < hi).bits());
+                one_by_one_lanes |= within & hit[k];
+            }
+            unsigned any_slow = 0;
+            for (int k = 0; k < g.count; ++k) any_slow |= slow[k];
+            one_by_one_lanes |= any_slow & near_any;
+            counters.primitive +=
+                static_cast<uint64_t>(g.count) * lane_count(open & ~one_by_one_lanes);
+            for (unsigned lanes = one_by_one_lanes; lanes != 0; lanes &= lanes - 1) {
+                const int l = __builtin_ctz(lanes);
+                const unsigned bit = 1u << l;
+                unsigned slow_spheres = 0;
+                if (near_any & bit)
+                    for (int k = 0; k < g.count; ++k) slow_spheres |= ((slow[k] & bit) != 0) << k;
+                counters.primitive += tests_besides(g.count, slow_spheres);
+                bool blocked = false;
+                for (int k = 0; k < g.count && !blocked; ++k) {
+                    if (!(hit[k] & bit)) continue;
+                    const uint32_t n = roots_within(t0s[k][l], t1s[k][l], 0.0f, t_max[l]);
+                    blocked = n > 0 && !add_crossings(materials, scene.shapes[g.shape[k]].material,
+                                                      n, crossings[l]);
+                }
+                for (unsigned k = slow_spheres; k != 0 && !blocked; k &= k - 1) {
+                    blocked =
+                        !cross_shape(scene, materials, g.shape[__builtin_ctz(k)], s.ray(first + l),
+                                     0.0f, t_max[l], crossings[l], counters);
+                }
+                if (blocked) {
+                    T[first + l] = 0.0f;
+                    open &= ~bit;
+                }
+            }
+        }
+        // The planes, four segments at a time: world_root()'s steps lane by lane (n·o in
+        // double), a crossing where the root is within (0, t_max).
+        for (const uint32_t i : scene.direct_planes) {
+            if (open == 0) break;
+            counters.primitive += lane_count(open);
+            const Shape& plane = scene.shapes[i];
+            const __m128d nx = _mm_set1_pd(plane.normal.x), ny = _mm_set1_pd(plane.normal.y),
+                          nz = _mm_set1_pd(plane.normal.z);
+            const auto n_o = [&](__m128 x, __m128 y, __m128 z) {  // two lanes, in double
+                return _mm_add_pd(
+                    _mm_add_pd(_mm_mul_pd(nx, _mm_cvtps_pd(x)), _mm_mul_pd(ny, _mm_cvtps_pd(y))),
+                    _mm_mul_pd(nz, _mm_cvtps_pd(z)));
+            };
+            const __m128d offset = _mm_set1_pd(plane.offset);
+            const __m128 num_lo = _mm_cvtpd_ps(_mm_sub_pd(offset, n_o(o.x.v, o.y.v, o.z.v)));
+            const __m128 num_hi = _mm_cvtpd_ps(
+                _mm_sub_pd(offset, n_o(_mm_movehl_ps(o.x.v, o.x.v), _mm_movehl_ps(o.y.v, o.y.v),
+                                       _mm_movehl_ps(o.z.v, o.z.v))));
+            const F num(_mm_movelh_ps(num_lo, num_hi));
+            const F n_d =
+                F(plane.normal.x) * dir.x + F(plane.normal.y) * dir.y + F(plane.normal.z) * dir.z;
+            const F t = num / n_d;
+            const unsigned within = (F(0.0f) < t).bits() & (t < F::load(t_max)).bits() & open;
+            for (unsigned lanes = within; lanes != 0; lanes &= lanes - 1) {
+                const int l = __builtin_ctz(lanes);
+                if (!add_crossings(materials, plane.material, 1, crossings[l])) {
+                    T[first + l] = 0.0f;
+                    open &= ~(1u << l);
+                }
+            }
+        }
+        for (unsigned lanes = open; lanes != 0; lanes &= lanes - 1) {
+            const int l = __builtin_ctz(lanes);
+            T[first + l] = crossings[l].product();
+        }
+    }
+#else
+    one_by_one(active);
+#endif
+}
+
 }  // namespace luz::query

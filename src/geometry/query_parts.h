@@ -248,5 +248,10 @@ void nearest_hits_direct(const BuiltScene& scene, const Ray* rays, int n, float 
                          Hit* hits, bool* found, IntersectCounters& counters);
 float transmittance_direct(const BuiltScene& scene, const Materials& materials, const Ray& r,
                            float t_min, float t_max, IntersectCounters& counters);
+/// transmittance_direct() of the segments `active` of s over (0, t_max[k]), four at a time
+/// against each sphere (the shadow rays of a packet).
+void transmittances_direct(const BuiltScene& scene, const Materials& materials,
+                           const SegmentLanes& s, unsigned active, float* T,
+                           IntersectCounters& counters);
 
 }  // namespace luz::query

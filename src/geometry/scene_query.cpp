@@ -84,4 +84,16 @@ float transmittance(const BuiltScene& scene, const Materials& materials, const R
     });
 }
 
+void transmittances(const BuiltScene& scene, const Materials& materials, const SegmentLanes& s,
+                    unsigned active, float* T, IntersectCounters& counters) {
+    if (use_direct(scene) && !counters.timing) {
+        query::transmittances_direct(scene, materials, s, active, T, counters);
+        return;
+    }
+    for (; active != 0; active &= active - 1) {
+        const int k = __builtin_ctz(active);
+        T[k] = transmittance(scene, materials, s.ray(k), 0.0f, s.t_max[k], counters);
+    }
+}
+
 }  // namespace luz

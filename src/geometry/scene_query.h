@@ -75,4 +75,20 @@ void nearest_hits(const BuiltScene& scene, const Ray* rays, int n, float t_min, 
 float transmittance(const BuiltScene& scene, const Materials& materials, const Ray& r, float t_min,
                     float t_max, IntersectCounters& counters);
 
+/// Up to kMaxPacket segments side by side, by component: segment k starts at (ox, oy, oz)[k],
+/// goes along (dx, dy, dz)[k] and ends at t_max[k] (the shadow rays of a packet's points
+/// towards one light).
+struct SegmentLanes {
+    float ox[kMaxPacket], oy[kMaxPacket], oz[kMaxPacket];
+    float dx[kMaxPacket], dy[kMaxPacket], dz[kMaxPacket];
+    float t_max[kMaxPacket];
+    Ray ray(int k) const { return {{ox[k], oy[k], oz[k]}, {dx[k], dy[k], dz[k]}}; }
+};
+
+/// transmittance(scene, materials, s.ray(k), 0, s.t_max[k]) into T[k] for each segment k of
+/// `active` (bit k), bit for bit, with the same counts. In a small scene tested shape by shape
+/// (query_direct.cpp) four segments meet each sphere at once; otherwise one by one.
+void transmittances(const BuiltScene& scene, const Materials& materials, const SegmentLanes& s,
+                    unsigned active, float* T, IntersectCounters& counters);
+
 }  // namespace luz

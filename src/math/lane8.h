@@ -24,12 +24,14 @@ typedef float Lane8f __attribute__((vector_size(32)));
 typedef int32_t Lane8i __attribute__((vector_size(32)));
 
 /// x in every lane (its bits: a −0 stays −0).
-inline Lane8f lanes(float x) { return Lane8f{x, x, x, x, x, x, x, x}; }
+[[gnu::always_inline]] inline Lane8f lanes(float x) { return Lane8f{x, x, x, x, x, x, x, x}; }
 /// The same type at any 4-byte-aligned address, of any type (one unaligned load or store: a
 /// std::memcpy of several of them goes through the stack).
 typedef float Lane8fUnaligned __attribute__((vector_size(32), aligned(4), may_alias));
 /// Eight floats at p (32 bytes of any 4-byte-aligned object), and back.
-inline Lane8f load_lanes(const void* p) { return *static_cast<const Lane8fUnaligned*>(p); }
+[[gnu::always_inline]] inline Lane8f load_lanes(const void* p) {
+    return *static_cast<const Lane8fUnaligned*>(p);
+}
 inline void store_lanes(void* p, Lane8f v) { *static_cast<Lane8fUnaligned*>(p) = v; }
 
 // Without AVX, GCC 12 compiles the comparisons of eight-lane vectors, their `?:` and some of
@@ -46,18 +48,18 @@ struct HalvesF {
 struct HalvesI {
     __m128i lo, hi;
 };
-inline HalvesF halves(Lane8f a) {
+[[gnu::always_inline]] inline HalvesF halves(Lane8f a) {
     HalvesF h;
     std::memcpy(&h, &a, sizeof h);
     return h;
 }
-inline HalvesI halves(Lane8i a) {
+[[gnu::always_inline]] inline HalvesI halves(Lane8i a) {
     HalvesI h;
     std::memcpy(&h, &a, sizeof h);
     return h;
 }
 template <class V, class H>
-inline V whole(H lo, H hi) {
+[[gnu::always_inline]] inline V whole(H lo, H hi) {
     V v;
     std::memcpy(&v, &lo, sizeof lo);
     std::memcpy(reinterpret_cast<char*>(&v) + sizeof lo, &hi, sizeof hi);
@@ -65,12 +67,12 @@ inline V whole(H lo, H hi) {
 }
 /// op(a, b) on each half of two float vectors, as a mask.
 template <class Op>
-inline Lane8i compare(Lane8f a, Lane8f b, Op op) {
+[[gnu::always_inline]] inline Lane8i compare(Lane8f a, Lane8f b, Op op) {
     const HalvesF x = halves(a), y = halves(b);
     return whole<Lane8i>(op(x.lo, y.lo), op(x.hi, y.hi));
 }
 template <class Op>
-inline Lane8i compare(Lane8i a, Lane8i b, Op op) {
+[[gnu::always_inline]] inline Lane8i compare(Lane8i a, Lane8i b, Op op) {
     const HalvesI x = halves(a), y = halves(b);
     return whole<Lane8i>(op(x.lo, y.lo), op(x.hi, y.hi));
 }
@@ -79,30 +81,30 @@ inline Lane8i compare(Lane8i a, Lane8i b, Op op) {
 
 /// a < b, a <= b, a > b, a >= b, a == b, a != b lane by lane, as masks (IEEE: only != holds
 /// for a NaN).
-inline Lane8i lane_lt(Lane8f a, Lane8f b) {
+[[gnu::always_inline]] inline Lane8i lane_lt(Lane8f a, Lane8f b) {
 #if defined(LUZ_LANE8_HALVES)
     return lane8_detail::compare(a, b, [](__m128 x, __m128 y) { return _mm_cmplt_ps(x, y); });
 #else
     return a < b;
 #endif
 }
-inline Lane8i lane_le(Lane8f a, Lane8f b) {
+[[gnu::always_inline]] inline Lane8i lane_le(Lane8f a, Lane8f b) {
 #if defined(LUZ_LANE8_HALVES)
     return lane8_detail::compare(a, b, [](__m128 x, __m128 y) { return _mm_cmple_ps(x, y); });
 #else
     return a <= b;
 #endif
 }
-inline Lane8i lane_gt(Lane8f a, Lane8f b) { return lane_lt(b, a); }
-inline Lane8i lane_ge(Lane8f a, Lane8f b) { return lane_le(b, a); }
-inline Lane8i lane_eq(Lane8f a, Lane8f b) {
+[[gnu::always_inline]] inline Lane8i lane_gt(Lane8f a, Lane8f b) { return lane_lt(b, a); }
+[[gnu::always_inline]] inline Lane8i lane_ge(Lane8f a, Lane8f b) { return lane_le(b, a); }
+[[gnu::always_inline]] inline Lane8i lane_eq(Lane8f a, Lane8f b) {
 #if defined(LUZ_LANE8_HALVES)
     return lane8_detail::compare(a, b, [](__m128 x, __m128 y) { return _mm_cmpeq_ps(x, y); });
 #else
     return a == b;
 #endif
 }
-inline Lane8i lane_ne(Lane8f a, Lane8f b) {
+[[gnu::always_inline]] inline Lane8i lane_ne(Lane8f a, Lane8f b) {
 #if defined(LUZ_LANE8_HALVES)
     return lane8_detail::compare(a, b, [](__m128 x, __m128 y) { return _mm_cmpneq_ps(x, y); });
 #else
@@ -110,29 +112,29 @@ inline Lane8i lane_ne(Lane8f a, Lane8f b) {
 #endif
 }
 /// The same for 32-bit integers.
-inline Lane8i lane_lt(Lane8i a, Lane8i b) {
+[[gnu::always_inline]] inline Lane8i lane_lt(Lane8i a, Lane8i b) {
 #if defined(LUZ_LANE8_HALVES)
     return lane8_detail::compare(a, b, [](__m128i x, __m128i y) { return _mm_cmplt_epi32(x, y); });
 #else
     return a < b;
 #endif
 }
-inline Lane8i lane_gt(Lane8i a, Lane8i b) { return lane_lt(b, a); }
-inline Lane8i lane_ge(Lane8i a, Lane8i b) { return ~lane_lt(a, b); }
-inline Lane8i lane_le(Lane8i a, Lane8i b) { return ~lane_lt(b, a); }
-inline Lane8i lane_eq(Lane8i a, Lane8i b) {
+[[gnu::always_inline]] inline Lane8i lane_gt(Lane8i a, Lane8i b) { return lane_lt(b, a); }
+[[gnu::always_inline]] inline Lane8i lane_ge(Lane8i a, Lane8i b) { return ~lane_lt(a, b); }
+[[gnu::always_inline]] inline Lane8i lane_le(Lane8i a, Lane8i b) { return ~lane_lt(b, a); }
+[[gnu::always_inline]] inline Lane8i lane_eq(Lane8i a, Lane8i b) {
 #if defined(LUZ_LANE8_HALVES)
     return lane8_detail::compare(a, b, [](__m128i x, __m128i y) { return _mm_cmpeq_epi32(x, y); });
 #else
     return a == b;
 #endif
 }
-inline Lane8i lane_ne(Lane8i a, Lane8i b) { return ~lane_eq(a, b); }
+[[gnu::always_inline]] inline Lane8i lane_ne(Lane8i a, Lane8i b) { return ~lane_eq(a, b); }
 /// x in every lane.
-inline Lane8i lanes_i(int32_t x) { return Lane8i{} + x; }
+[[gnu::always_inline]] inline Lane8i lanes_i(int32_t x) { return Lane8i{} + x; }
 
 /// Bit k set where lane k of `m` is true.
-inline unsigned lane_bits(Lane8i m) {
+[[gnu::always_inline]] inline unsigned lane_bits(Lane8i m) {
 #if defined(__AVX__)
     return static_cast<unsigned>(_mm256_movemask_ps((__m256)m));
 #elif defined(__SSE2__)
@@ -146,13 +148,13 @@ inline unsigned lane_bits(Lane8i m) {
 #endif
 }
 /// The lanes of `mask` as a mask vector.
-inline Lane8i lane_mask(unsigned mask) {
+[[gnu::always_inline]] inline Lane8i lane_mask(unsigned mask) {
     const Lane8i bit = {1, 2, 4, 8, 16, 32, 64, 128};
     return lane_ne(lanes_i(static_cast<int32_t>(mask)) & bit, Lane8i{});
 }
 
 /// √x lane by lane (IEEE, as std::sqrt).
-inline Lane8f lane_sqrt(Lane8f x) {
+[[gnu::always_inline]] inline Lane8f lane_sqrt(Lane8f x) {
 #if defined(__AVX__)
     return (Lane8f)_mm256_sqrt_ps((__m256)x);
 #elif defined(__SSE2__)  // the two halves, each in one register
@@ -164,12 +166,14 @@ inline Lane8f lane_sqrt(Lane8f x) {
 #endif
 }
 /// mask ? a : b lane by lane (`mask` all bits set or clear in each lane).
-inline Lane8f lane_select(Lane8i mask, Lane8f a, Lane8f b) {
+[[gnu::always_inline]] inline Lane8f lane_select(Lane8i mask, Lane8f a, Lane8f b) {
     return (Lane8f)(((Lane8i)a & mask) | ((Lane8i)b & ~mask));
 }
-inline Lane8i lane_select(Lane8i mask, Lane8i a, Lane8i b) { return (a & mask) | (b & ~mask); }
+[[gnu::always_inline]] inline Lane8i lane_select(Lane8i mask, Lane8i a, Lane8i b) {
+    return (a & mask) | (b & ~mask);
+}
 /// base[index[k]] in lane k.
-inline Lane8i gather_lanes(const int32_t* base, Lane8i index) {
+[[gnu::always_inline]] inline Lane8i gather_lanes(const int32_t* base, Lane8i index) {
 #if defined(__AVX2__)
     return (Lane8i)_mm256_i32gather_epi32(base, (__m256i)index, 4);
 #else

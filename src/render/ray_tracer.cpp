@@ -276,12 +276,14 @@ Rgb RayTracer::sample(float px, float py, TraceCounters& counters) const {
     return c;
 }
 
-void RayTracer::shade_hits(const Ray* rays, const Hit* hits, unsigned which, ShadedHit* out) const {
+void RayTracer::shade_hits(const Ray* rays, const Hit* hits, unsigned which,
+                           TraceCounters& counters, ShadedHit* out) const {
     // The points as trace_impl() builds them (a ShadingPoint each), by component; the other
     // lanes shaded on zeros and not read.
     ShadingLanes p;
     for (int a = 0; a < 3; ++a) p.P[a] = p.N[a] = p.S[a] = p.ka[a] = p.kd[a] = p.ks[a] = lanes(0);
     p.n = lanes(1.0f);
+    Lane8f Ng[3] = {lanes(0.0f), lanes(0.0f), lanes(0.0f)};  // geometric normals (spawns)
     for (unsigned left = which; left != 0; left &= left - 1) {
         const int k = __builtin_ctz(left);
         const Shape& shape = scene_.shapes[hits[k].shape];
@@ -293,6 +295,7 @@ void RayTracer::shade_hits(const Ray* rays, const Hit* hits, unsigned which, Sha
         for (int a = 0; a < 3; ++a) {
             p.P[a][k] = sp.P[a];
             p.N[a][k] = sp.N[a];
+            Ng[a][k] = sp.Ng[a];
             p.S[a][k] = S[a];
             p.ka[a][k] = c.ka[a];
             p.kd[a][k] = c.kd[a];
@@ -302,7 +305,34 @@ void RayTracer::shade_hits(const Ray* rays, const Hit* hits, unsigned which, Sha
         p.schlick[k] = m.reflectance == Reflectance::schlick ? -1 : 0;
     }
     Lane8f I[3];
-    shade_lanes(p, lighting_, which, I);
+    if (!full_) {
+        shade_lanes(p, lighting_, which, I);
+    } else {
+        uint64_t shadow_rays[kMaxPacket] = {};
+        // vis_j of the lit lanes: their shadow rays P → light j side by side, spawned as
+        // trace_impl()'s visibility spawns them (spawn_ray(), direction L_j, length d_j).
+        const auto visibility = [&](size_t, const Lane8f* L, const Lane8f& d,
+                                    unsigned lit) [[gnu::always_inline]] {
+            const Lane8f L_dot_Ng = L[0] * Ng[0] + L[1] * Ng[1] + L[2] * Ng[2];
+            const Lane8f offset = lane_select(lane_gt(L_dot_Ng, lanes(0.0f)), lanes(kRayEpsilon),
+                                              lanes(-kRayEpsilon));
+            SegmentLanes seg;
+            store_lanes(seg.ox, p.P[0] + Ng[0] * offset);
+            store_lanes(seg.oy, p.P[1] + Ng[1] * offset);
+            store_lanes(seg.oz, p.P[2] + Ng[2] * offset);
+            store_lanes(seg.dx, L[0]);
+            store_lanes(seg.dy, L[1]);
+            store_lanes(seg.dz, L[2]);
+            store_lanes(seg.t_max, d);
+            for (unsigned left = lit; left != 0; left &= left - 1)
+                ++shadow_rays[__builtin_ctz(left)];
+            alignas(32) float T[kMaxPacket] = {};
+            transmittances(scene_, settings_.materials, seg, lit, T, counters.tests);
+            return load_lanes(T);
+        };
+        shade_lanes(p, lighting_, which, I, visibility);
+        for (int k = 0; k < kMaxPacket; ++k) out[k].shadow_rays = shadow_rays[k];
+    }
     for (unsigned left = which; left != 0; left &= left - 1) {
         const int k = __builtin_ctz(left);
         out[k].local = Rgb{I[0][k], I[1][k], I[2][k]};
@@ -330,16 +360,16 @@ void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& 
             nearest_hits(scene_, camera_rays, m, 0.0f, kInfinity, hits, found, counters.tests);
             if (timed) packet_ns = nanoseconds_since(start);
         }
-        // Raycast: the hits shaded side by side, those of untimed samples (a timed one is
-        // traced whole, as sample() traces it) when no light sphere can come before them.
+        // The hits shaded side by side (their shadow rays too), those of untimed samples (a
+        // timed one is traced whole, as sample() traces it) when no light sphere can come
+        // before them; trace_impl() then goes on from each with its secondary rays.
         unsigned packed = 0;
         ShadedHit shaded[kMaxPacket];
-        if (!full_ && visible_lights_.empty() &&
-            !(cancel_ && cancel_->load(std::memory_order_relaxed))) {
+        if (visible_lights_.empty() && !(cancel_ && cancel_->load(std::memory_order_relaxed))) {
             for (int k = 0; k < m; ++k)
                 if (found[k] && (i0 + static_cast<uint64_t>(k)) % kTimedSampleEvery != 0)
                     packed |= 1u << k;
-            if (packed != 0) shade_hits(camera_rays, hits, packed, shaded);
+            if (packed != 0) shade_hits(camera_rays, hits, packed, counters, shaded);
         }
         for (int k = 0; k < m; ++k) {
             const uint64_t before = work_of(counters);
@@ -348,6 +378,7 @@ void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& 
                                             : std::chrono::steady_clock::time_point{};
             counters.tests.timing = timed_sample;
             const std::pair<bool, Hit> primary{found[k], hits[k]};
+            if ((packed >> k) & 1u) counters.shadow += shaded[k].shadow_rays;
             float distance;
             out[first + k] =
                 trace_impl<false>(camera_rays[k], 0, 1.0f, counters, distance, nullptr, nullptr,

@@ -59,8 +59,9 @@ bool refract(const Vec3& D, const Vec3& N, float n1, float n2, Vec3& T);
 
 /// A camera hit shaded with its packet (RayTracer::shade_hits()).
 struct ShadedHit {
-    SurfacePoint sp;  ///< surface_at() of the hit
-    Rgb local;        ///< shade() at it
+    SurfacePoint sp;           ///< surface_at() of the hit
+    Rgb local;                 ///< shade() at it
+    uint64_t shadow_rays = 0;  ///< the shadow rays shade() traced for it
 };
 
 class RayTracer {
@@ -110,10 +111,12 @@ class RayTracer {
                    const std::pair<bool, Hit>* primary = nullptr,
                    const ShadedHit* shaded = nullptr) const;
 
-    /// Raycast: shade() at the camera hits `which` (bit k: rays[k], hits[k]) of a packet side
-    /// by side (shade_lanes(), every light seen), into out[k]: the bits trace_impl() finds one
-    /// by one.
-    void shade_hits(const Ray* rays, const Hit* hits, unsigned which, ShadedHit* out) const;
+    /// shade() at the camera hits `which` (bit k: rays[k], hits[k]) of a packet side by side
+    /// (shade_lanes(); in raytrace the shadow rays towards each light side by side too,
+    /// transmittances()), into out[k]: the bits and counts trace_impl() finds one by one. The
+    /// shadow rays are counted in out[k].shadow_rays, for the caller to add sample by sample.
+    void shade_hits(const Ray* rays, const Hit* hits, unsigned which, TraceCounters& counters,
+                    ShadedHit* out) const;
 
     /// The nearest visible light sphere along ray within (0, t_max), or −1.
     int nearest_light(const Ray& ray, float& t_max, TraceCounters& counters) const;

@@ -27,9 +27,20 @@ inline Lane8f dot(const Lane8f a[3], const Lane8f b[3]) {
 }
 }  // namespace lanes_detail
 
-/// shade(p_k, lighting, AllVisible{}) in lane k of I, for the lanes of `active` (bit k: lane k).
+/// Visibility for shade_lanes() without shadow rays: every light seen in every lane.
+struct AllVisibleLanes {
+    [[gnu::always_inline]] Lane8f operator()(size_t, const Lane8f*, const Lane8f&, unsigned) const {
+        return lanes(1.0f);
+    }
+};
+
+/// shade(p_k, lighting, visibility) in lane k of I, for the lanes of `active` (bit k: lane k).
+/// `visibility(j, L, d, lit)` gives vis_j by lane, read in the lanes of `lit` (active, in front
+/// of the surface) only, and is not called when there are none.
+template <class Visibility = AllVisibleLanes>
 [[gnu::always_inline]] inline void shade_lanes(const ShadingLanes& p, const Lighting& lighting,
-                                               unsigned active, Lane8f I[3]) {
+                                               unsigned active, Lane8f I[3],
+                                               Visibility&& visibility = {}) {
     using lanes_detail::dot;
     const Lane8f zero = lanes(0.0f), one = lanes(1.0f);
 
@@ -41,14 +52,15 @@ inline Lane8f dot(const Lane8f a[3], const Lane8f b[3]) {
     const float Ia[3] = {lighting.Ia.x, lighting.Ia.y, lighting.Ia.z};
     for (int a = 0; a < 3; ++a) I[a] = Ia[a] * p.ka[a];  // Ia·Ka
     // max_component(w) > 0: the specular term needs a power
-    const auto max_component = [](const Lane8f w[3]) {
+    const auto max_component = [](const Lane8f w[3]) [[gnu::always_inline]] {
         return lane_select(lane_gt(w[0], w[1]), lane_select(lane_gt(w[0], w[2]), w[0], w[2]),
                            lane_select(lane_gt(w[1], w[2]), w[1], w[2]));
     };
     const bool any_schlick = (lane_bits(p.schlick) & active) != 0;
     const Lane8i has_ks = lane_gt(max_component(p.ks), zero);
 
-    for (const Light& light : lighting.lights) {
+    for (size_t j = 0; j < lighting.lights.size(); ++j) {
+        const Light& light = lighting.lights[j];
         const float Lp[3] = {light.position.x, light.position.y, light.position.z};
         const float Il[3] = {light.intensity.x, light.intensity.y, light.intensity.z};
         Lane8f to_light[3];
@@ -58,13 +70,16 @@ inline Lane8f dot(const Lane8f a[3], const Lane8f b[3]) {
         Lane8f L[3];
         for (int a = 0; a < 3; ++a) L[a] = to_light[a] * inv_d;
         const Lane8f N_dot_L = dot(N, L);
-        const Lane8i lit = lane_gt(N_dot_L, zero);
-        if (!(lane_bits(lit) & active)) continue;
+        const Lane8i front = lane_gt(N_dot_L, zero);
+        const unsigned front_bits = lane_bits(front) & active;
+        if (front_bits == 0) continue;
         const Lane8f cos_theta = N_dot_L;  // cosθ_j = max(0, N·L_j) where lit
+        const Lane8f vis = visibility(j, L, d, front_bits);
+        const Lane8i lit = front & lane_gt(vis, zero);  // shade() adds nothing where vis_j = 0
         Lane8f diffuse[3], specular[3] = {zero, zero, zero};
         if (lighting.model == Model::lambert) {
-            // I += vis_j·Il_j·Kd·cosθ_j (vis_j = 1)
-            for (int a = 0; a < 3; ++a) diffuse[a] = (Il[a] * p.kd[a]) * cos_theta;
+            // I += vis_j·Il_j·Kd·cosθ_j
+            for (int a = 0; a < 3; ++a) diffuse[a] = (Il[a] * p.kd[a]) * (vis * cos_theta);
         } else {
             // I += vis_j·Il_j/(d_j+K)·(Kd·cosθ_j + Ks·cosα_j^n)
             Lane8f R[3];  // mirror direction of L_j
@@ -72,7 +87,7 @@ inline Lane8f dot(const Lane8f a[3], const Lane8f b[3]) {
             for (int a = 0; a < 3; ++a) R[a] = N[a] * two_N_dot_L - L[a];
             const Lane8f R_dot_S = dot(R, p.S);
             const Lane8f cos_alpha = lane_select(lane_gt(R_dot_S, zero), R_dot_S, zero);
-            const Lane8f att = one / (d + lighting.K);
+            const Lane8f att = vis / (d + lighting.K);
             Lane8f Il_att[3];
             for (int a = 0; a < 3; ++a) {
                 Il_att[a] = Il[a] * att;

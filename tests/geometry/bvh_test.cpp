@@ -457,6 +457,76 @@ TEST(SmallScenes, ShapeByShapeEqualsTheBvhAndTestingEverything) {
     EXPECT_LT(cd.bounds, ca.bounds / 2);
 }
 
+TEST(SmallScenes, ShadowSegmentsFourAtATimeBitForBit) {
+    // transmittances() in a scene tested shape by shape takes four segments at a time against
+    // each sphere in world form and each plane (query_direct.cpp): every transmittance and
+    // every count must be what transmittance() gives segment by segment — five spheres (two
+    // groups; opaque, 0.7 and 0.35 transparent, a tie), two planes; segments from a sphere's
+    // surface (its double path), through glass (products), into opaque spheres and planes
+    // (early ends), of zero or tiny direction (one by one), any subset of eight lanes. Then
+    // the same with an ellipsoid added, which the lanes leave to transmittance().
+    std::vector<ObjectDesc> objects = {sphere({0, 0, 0}, 1.5f, 1),  sphere({0, 0, 0}, 1.5f, 2),
+                                       sphere({2, 1, -1}, 0.8f, 0), sphere({-2, 2, 0}, 0.6f, 1),
+                                       sphere({0, 3, -2}, 1.1f, 2), plane({0, -4, 0}, 1),
+                                       plane({0, 5, 0}, 0)};
+    for (const bool with_ellipsoid : {false, true}) {
+        if (with_ellipsoid) {
+            ObjectDesc ellipsoid = sphere({-2, 1, 1}, 1.0f, 1);
+            ellipsoid.transform = scaling({1.5f, 0.5f, 1.0f});
+            objects.push_back(ellipsoid);
+        }
+        const SceneDesc desc = scene_with(objects);
+        const BuiltScene scene = build_scene(desc);
+        ASSERT_TRUE(scene.direct);
+        ASSERT_EQ(scene.sphere_groups.size(), 2u);
+        RandomRays gen;
+        IntersectCounters by_lanes, one_by_one;
+        int mismatches = 0, partial = 0, blocked = 0, slow = 0;
+        for (int batch = 0; batch < 6000; ++batch) {
+            SegmentLanes seg;
+            const unsigned active = batch % 7 == 3 ? (batch * 37u) & 0xFFu : 0xFFu;
+            for (int k = 0; k < kMaxPacket; ++k) {
+                float t_max;
+                Ray r = gen.next(batch * 8 + k, t_max);
+                if (k % 3 == 1) {  // from the first sphere's surface, on it or 1e-4 off it
+                    const float offset = (k & 4) ? 1e-4f : (batch & 1) ? -1e-4f : 0.0f;
+                    r.origin = random_direction(gen.rng) * (1.5f + offset);
+                    slow += sphere_group_roots(scene.sphere_groups[0], r).slow != 0;
+                }
+                if (batch % 97 == 5 && k == 2) r.direction = Vec3{0.0f};
+                if (batch % 89 == 7 && k == 6) r.direction = r.direction * 0x1p-40f;
+                if (std::isinf(t_max)) t_max = uniform(gen.rng, 1.0f, 20.0f);
+                seg.ox[k] = r.origin.x;
+                seg.oy[k] = r.origin.y;
+                seg.oz[k] = r.origin.z;
+                seg.dx[k] = r.direction.x;
+                seg.dy[k] = r.direction.y;
+                seg.dz[k] = r.direction.z;
+                seg.t_max[k] = t_max;
+            }
+            float T[kMaxPacket];
+            transmittances(scene, desc.materials, seg, active, T, by_lanes);
+            for (int k = 0; k < kMaxPacket; ++k) {
+                if (!(active >> k & 1u)) continue;
+                const float expected = transmittance(scene, desc.materials, seg.ray(k), 0.0f,
+                                                     seg.t_max[k], one_by_one);
+                if (std::memcmp(&expected, &T[k], sizeof(float)) != 0 && ++mismatches <= 5) {
+                    ADD_FAILURE() << "batch " << batch << " lane " << k << ": " << T[k]
+                                  << " vs transmittance() " << expected;
+                }
+                partial += expected > 0 && expected < 1;
+                blocked += expected == 0;
+            }
+        }
+        EXPECT_EQ(mismatches, 0);
+        EXPECT_EQ(by_lanes.primitive, one_by_one.primitive);
+        EXPECT_EQ(by_lanes.bounds, one_by_one.bounds);
+        EXPECT_GT(partial, 2000);
+        EXPECT_GT(blocked, 2000);
+        EXPECT_GT(slow, 1000);
+    }
+}
+
 TEST(SmallScenes, PacketsTestFourRaysPerSphereBitForBit) {
     // nearest_hits() in a scene tested shape by shape takes four rays at a time against each
     // sphere in world form (query_direct.cpp): every hit and every count must be what
