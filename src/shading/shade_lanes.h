@@ -1,9 +1,11 @@
-// shade_lanes(): shade() at eight surface points side by side, for the case the zbuffer meets
-// most: every light seen (no shadow rays) and no terms asked for. Any material: Schlick's
-// reflectance is taken in lanes (ShadingLanes::schlick), and a checker's Ka and Kd are the
-// caller's to fill per lane (surface_constants()). Each lane computes what shade() computes,
-// with the same operations in the same order, so that every lane's colour has shade()'s bits
-// (tests/shading/shade_lanes_test.cpp); only cosα^n is taken lane by lane (phong_power()).
+// shade_lanes(): shade() at eight surface points side by side, no terms asked for: the zbuffer's
+// fragments (every light seen) and the ray tracer's camera hits (a visibility per light and
+// lane from their shadow rays, traced side by side). Any material: Schlick's reflectance is
+// taken in lanes (ShadingLanes::schlick), and a checker's Ka and Kd are the caller's to fill per
+// lane (surface_constants()). Each lane computes what shade() computes, with the same
+// operations in the same order, so that every lane's colour has shade()'s bits
+// (tests/shading/shade_lanes_test.cpp; with shadows, tests/render/ray_tracer_test.cpp); only
+// cosα^n is taken lane by lane (phong_power()).
 #pragma once
 
 #include "math/lane8.h"
