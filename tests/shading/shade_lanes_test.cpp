@@ -1,7 +1,7 @@
 // shade_lanes() against shade(), lane for lane and bit for bit: random points, normals, viewers,
 // materials (Ks zero or not, many exponents, Schlick's reflectance, checkers whose Ka and Kd the
-// caller picks per lane) and lights (in front, behind, several), both models; and only the
-// active lanes are shaded.
+// caller picks per lane) and lights (in front, behind, several; seen, blocked or through glass
+// lane by lane), both models; and only the active lanes are shaded.
 #include "shading/shade_lanes.h"
 
 #include <gtest/gtest.h>
@@ -31,8 +31,15 @@ Material random_material(std::mt19937& rng, int i) {
     return m;
 }
 
-/// Shades `count` random points both ways under `model` and compares every active lane.
-void expect_lanes_match(Model model, int light_count, unsigned seed) {
+/// vis_j at lane k of group g when `shadows` (else 1): lit, blocked, or through glass.
+float visibility_of(bool shadows, int group, size_t j, int k) {
+    const float vis[] = {1.0f, 0.0f, 0.35f, 0.7f * 0.7f, 1e-3f};
+    return shadows ? vis[(group * 7 + static_cast<int>(j) * 3 + k) % 5] : 1.0f;
+}
+
+/// Shades `count` random points both ways under `model` and compares every active lane; with
+/// `shadows`, each light's visibility varies by lane (as shadow rays give it).
+void expect_lanes_match(Model model, int light_count, unsigned seed, bool shadows = false) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> pos(-5.0f, 5.0f), u(0.0f, 1.0f);
     std::vector<Material> materials;
@@ -71,10 +78,24 @@ void expect_lanes_match(Model model, int light_count, unsigned seed) {
         }
         const unsigned active = group % 5 == 0 ? 0x5Bu : 0xFFu;
         Lane8f I[3];
-        shade_lanes(p, lighting, active, I);
+        if (shadows) {
+            shade_lanes(p, lighting, active, I,
+                        [&](size_t j, const Lane8f*, const Lane8f&, unsigned lit) {
+                            EXPECT_EQ(lit & ~active, 0u);
+                            Lane8f v = lanes(-1.0f);  // never read outside `lit`
+                            for (int k = 0; k < kPacketLanes; ++k)
+                                if (lit >> k & 1u) v[k] = visibility_of(true, group, j, k);
+                            return v;
+                        });
+        } else {
+            shade_lanes(p, lighting, active, I);
+        }
         for (int k = 0; k < kPacketLanes; ++k) {
             if (!(active >> k & 1u)) continue;
-            const Rgb expected = shade(points[k], lighting, AllVisible{});
+            const Rgb expected =
+                shade(points[k], lighting, [&](size_t j, const Vec3&, const Vec3&, float) {
+                    return visibility_of(shadows, group, j, k);
+                });
             const Rgb ambient =
                 lighting.Ia * surface_constants(*points[k].material, points[k].P, points[k].Ng).ka;
             lit += expected != ambient;
@@ -107,6 +128,11 @@ TEST(ShadeLanes, LambertMatchesShadeBitForBit) {
 }
 
 TEST(ShadeLanes, NoLightsGiveTheAmbientTerm) { expect_lanes_match(Model::phong, 0, 5); }
+
+TEST(ShadeLanes, VisibilityByLaneMatchesShadeBitForBit) {
+    expect_lanes_match(Model::phong, 2, 6, true);
+    expect_lanes_match(Model::lambert, 3, 7, true);
+}
 
 }  // namespace
 }  // namespace luz
