@@ -46,8 +46,8 @@ inline Lane8i hit_child(const Bvh8::Node& n, int k, const BoxRays& r, Lane8f t_m
         const Lane8f far_plane = lane_select(r.negative[a], lo, hi);
         const Lane8f t0 = (near_plane - r.o[a]) * r.inv[a];
         const Lane8f t1 = ((far_plane - r.o[a]) * r.inv[a]) * scale;
-        tn = lane_select(lane_gt(t0, tn), t0, tn);  // NaN → tn
-        tf = lane_select(lane_lt(t1, tf), t1, tf);  // NaN → tf
+        tn = greater_or_second(t0, tn);  // t0 > tn ? t0 : tn (NaN → tn)
+        tf = less_or_second(t1, tf);     // t1 < tf ? t1 : tf (NaN → tf)
     }
     entry = tn;
     return lane_le(tn, tf);

@@ -165,12 +165,43 @@ template <class Op>
     return x;
 #endif
 }
-/// mask ? a : b lane by lane (`mask` all bits set or clear in each lane).
+/// mask ? a : b lane by lane (`mask` all bits set or clear in each lane): one blend with AVX.
 [[gnu::always_inline]] inline Lane8f lane_select(Lane8i mask, Lane8f a, Lane8f b) {
+#if defined(__AVX__)
+    return (Lane8f)_mm256_blendv_ps((__m256)b, (__m256)a, (__m256)mask);
+#else
     return (Lane8f)(((Lane8i)a & mask) | ((Lane8i)b & ~mask));
+#endif
 }
 [[gnu::always_inline]] inline Lane8i lane_select(Lane8i mask, Lane8i a, Lane8i b) {
+#if defined(__AVX__)
+    return (Lane8i)_mm256_blendv_ps((__m256)b, (__m256)a, (__m256)mask);
+#else
     return (a & mask) | (b & ~mask);
+#endif
+}
+/// a > b ? a : b lane by lane, b where either is NaN (one maxps; the slab tests' running
+/// maximum, which a NaN leaves as it is).
+[[gnu::always_inline]] inline Lane8f greater_or_second(Lane8f a, Lane8f b) {
+#if defined(__AVX__)
+    return (Lane8f)_mm256_max_ps((__m256)a, (__m256)b);
+#elif defined(__SSE2__)
+    const lane8_detail::HalvesF x = lane8_detail::halves(a), y = lane8_detail::halves(b);
+    return lane8_detail::whole<Lane8f>(_mm_max_ps(x.lo, y.lo), _mm_max_ps(x.hi, y.hi));
+#else
+    return lane_select(lane_gt(a, b), a, b);
+#endif
+}
+/// a < b ? a : b lane by lane, b where either is NaN (one minps).
+[[gnu::always_inline]] inline Lane8f less_or_second(Lane8f a, Lane8f b) {
+#if defined(__AVX__)
+    return (Lane8f)_mm256_min_ps((__m256)a, (__m256)b);
+#elif defined(__SSE2__)
+    const lane8_detail::HalvesF x = lane8_detail::halves(a), y = lane8_detail::halves(b);
+    return lane8_detail::whole<Lane8f>(_mm_min_ps(x.lo, y.lo), _mm_min_ps(x.hi, y.hi));
+#else
+    return lane_select(lane_lt(a, b), a, b);
+#endif
 }
 /// base[index[k]] in lane k.
 [[gnu::always_inline]] inline Lane8i gather_lanes(const int32_t* base, Lane8i index) {

@@ -68,6 +68,7 @@ TEST(Lane8, FloatComparisonsAreTheScalarOnesInEveryLane) {
             const Lane8i lt = lane_lt(a, b), le = lane_le(a, b), gt = lane_gt(a, b),
                          ge = lane_ge(a, b), eq = lane_eq(a, b), ne = lane_ne(a, b);
             const Lane8f min = lane_select(lt, a, b);
+            const Lane8f greater = greater_or_second(a, b), less = less_or_second(a, b);
             for (int k = 0; k < kPacketLanes; ++k) {
                 const float x = a[k], y = b[k];
                 EXPECT_EQ(lt[k], mask(x < y)) << x << " < " << y;
@@ -77,6 +78,11 @@ TEST(Lane8, FloatComparisonsAreTheScalarOnesInEveryLane) {
                 EXPECT_EQ(eq[k], mask(x == y)) << x << " == " << y;
                 EXPECT_EQ(ne[k], mask(x != y)) << x << " != " << y;
                 EXPECT_EQ(std::bit_cast<uint32_t>(min[k]), std::bit_cast<uint32_t>(x < y ? x : y));
+                EXPECT_EQ(std::bit_cast<uint32_t>(greater[k]),
+                          std::bit_cast<uint32_t>(x > y ? x : y))
+                    << x << " > " << y << " ? ...";
+                EXPECT_EQ(std::bit_cast<uint32_t>(less[k]), std::bit_cast<uint32_t>(x < y ? x : y))
+                    << x << " < " << y << " ? ...";
             }
         }
     }
