@@ -311,8 +311,7 @@ void RayTracer::shade_hits(const Ray* rays, const Hit* hits, unsigned which,
         uint64_t shadow_rays[kMaxPacket] = {};
         // vis_j of the lit lanes: their shadow rays P → light j side by side, spawned as
         // trace_impl()'s visibility spawns them (spawn_ray(), direction L_j, length d_j).
-        const auto visibility = [&](size_t, const Lane8f* L, const Lane8f& d,
-                                    unsigned lit) [[gnu::always_inline]] {
+        const auto visibility = [&](size_t, const Lane8f* L, const Lane8f& d, unsigned lit) {
             const Lane8f L_dot_Ng = L[0] * Ng[0] + L[1] * Ng[1] + L[2] * Ng[2];
             const Lane8f offset = lane_select(lane_gt(L_dot_Ng, lanes(0.0f)), lanes(kRayEpsilon),
                                               lanes(-kRayEpsilon));

@@ -54,7 +54,7 @@ template <class Visibility = AllVisibleLanes>
     const float Ia[3] = {lighting.Ia.x, lighting.Ia.y, lighting.Ia.z};
     for (int a = 0; a < 3; ++a) I[a] = Ia[a] * p.ka[a];  // Ia·Ka
     // max_component(w) > 0: the specular term needs a power
-    const auto max_component = [](const Lane8f w[3]) [[gnu::always_inline]] {
+    const auto max_component = [](const Lane8f w[3]) {
         return lane_select(lane_gt(w[0], w[1]), lane_select(lane_gt(w[0], w[2]), w[0], w[2]),
                            lane_select(lane_gt(w[1], w[2]), w[1], w[2]));
     };
