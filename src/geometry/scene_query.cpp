@@ -73,6 +73,16 @@ void nearest_hits(const BuiltScene& scene, const Ray* rays, int n, float t_min, 
     });
 }
 
+void nearest_hits_scattered(const BuiltScene& scene, const Ray* rays, int n, float t_min,
+                            float t_max, Hit* hits, bool* found, IntersectCounters& counters) {
+    if (use_direct(scene)) {
+        nearest_hits(scene, rays, n, t_min, t_max, hits, found, counters);
+        return;
+    }
+    for (int k = 0; k < n; ++k)
+        found[k] = nearest_hit(scene, rays[k], t_min, t_max, hits[k], counters);
+}
+
 float transmittance(const BuiltScene& scene, const Materials& materials, const Ray& r, float t_min,
                     float t_max, IntersectCounters& counters) {
     return timed(counters, [&] {

@@ -67,6 +67,13 @@ inline constexpr int kMaxPacket = 8;
 void nearest_hits(const BuiltScene& scene, const Ray* rays, int n, float t_min, float t_max,
                   Hit* hits, bool* found, IntersectCounters& counters);
 
+/// nearest_hits() for rays that need not be coherent (the secondary rays of neighbouring
+/// pixels): side by side only in a small scene tested shape by shape, where that never costs
+/// more than one by one; down the BVH one by one (a packet of diverging rays visits the nodes
+/// of all of them). The same bits and counts as nearest_hit() either way.
+void nearest_hits_scattered(const BuiltScene& scene, const Ray* rays, int n, float t_min,
+                            float t_max, Hit* hits, bool* found, IntersectCounters& counters);
+
 /// The product of `transparency` over every surface r crosses in (t_min, t_max): 1 if none,
 /// 0 as soon as an opaque one is met (SPEC §1: vis_j; a closed glass shape counts twice). The
 /// crossings are counted per material and multiplied in material order, so the result does

@@ -49,6 +49,20 @@ bool refract(const Vec3& D, const Vec3& N, float n1, float n2, Vec3& T) {
     return true;
 }
 
+Bounce bounce(const Vec3& D, const SurfacePoint& sp, const Material& m) {
+    const bool entering = dot(D, sp.Ng) < 0;
+    const Vec3 N = dot(D, sp.N) < 0 ? sp.N : -sp.N;  // facing the incoming ray
+    Bounce b;
+    b.reflected = reflect(D, N);
+    if (m.transparency > 0) {
+        const float n1 = entering ? 1.0f : m.ior, n2 = entering ? m.ior : 1.0f;
+        Vec3 T;
+        b.tir = !refract(D, N, n1, n2, T);
+        b.refracted = b.tir ? b.reflected : T;
+    }
+    return b;
+}
+
 RayTracer::RayTracer(const BuiltScene& scene, const Settings& settings, bool full,
                      const std::atomic<bool>* cancel)
     : scene_(scene),
@@ -192,9 +206,7 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, float weight, TraceCounters
     }
     if (depth >= max_depth_ || (m.reflection <= 0 && m.transparency <= 0)) return record(c);
 
-    // The normal facing the incoming ray (two-sided), and whether the ray enters the object.
-    const bool entering = dot(D, sp.Ng) < 0;
-    const Vec3 N = dot(D, sp.N) < 0 ? sp.N : -sp.N;
+    const Bounce b = bounce(D, sp, m);
     const float K = desc.attenuation_k;
     // A = 1, or 1/(d+K) for the secondary segment's length d (SPEC §1.1: tree_attenuation).
     int child = -1;  // the last secondary ray's node (ray-tree recording; -1: not recorded)
@@ -233,28 +245,23 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, float weight, TraceCounters
         (kind == RayKind::reflection ? tree->nodes[self].reflection_child
                                      : tree->nodes[self].refraction_child) = child;
     };
-    const Vec3 R = reflect(D, N);
     if (m.reflection > 0) {
         const Rgb contribution =
-            secondary(spawn_ray(sp.P, sp.Ng, R), m.reflection, counters.reflection) * m.reflection;
+            secondary(spawn_ray(sp.P, sp.Ng, b.reflected), m.reflection, counters.reflection) *
+            m.reflection;
         c += contribution;
         if constexpr (kTerms) out->reflected = contribution;
         if (tree) record_child(RayKind::reflection, m.reflection, contribution);
     }
     if (m.transparency > 0) {
-        // Entering: n1 = 1, n2 = ior; leaving: n1 = ior, n2 = 1 (the medium around is 1.0).
-        const float n1 = entering ? 1.0f : m.ior, n2 = entering ? m.ior : 1.0f;
-        Vec3 T;
-        const bool tir = !refract(D, N, n1, n2, T);
-        const Vec3 dir = tir ? R : T;  // total internal reflection: R
         const Rgb contribution =
-            secondary(spawn_ray(sp.P, sp.Ng, dir), m.transparency, counters.refraction) *
+            secondary(spawn_ray(sp.P, sp.Ng, b.refracted), m.transparency, counters.refraction) *
             m.transparency;
         c += contribution;
         if constexpr (kTerms) out->refracted = contribution;
         if (tree) {
             record_child(RayKind::refraction, m.transparency, contribution);
-            tree->nodes[self].total_internal_reflection = tir;
+            tree->nodes[self].total_internal_reflection = b.tir;
         }
     }
     return record(c);
@@ -338,57 +345,212 @@ void RayTracer::shade_hits(const Ray* rays, const Hit* hits, unsigned which,
     }
 }
 
+namespace {
+
+/// A ray of a batch's ray trees, traced level by level (RayTracer::trace_trees()).
+struct TreeRay {
+    static constexpr int kNone = -1;     ///< no such child (no reflection, no transparency)
+    static constexpr int kSkipped = -2;  ///< a child weighing less than min_weight: not traced
+    Ray ray;
+    float weight = 1.0f;  ///< the product of the coefficients that scale it (trace_impl())
+    int depth = 0;
+    int sample = 0;                              ///< whose tree: the sample's index in the batch
+    int reflection = kNone, refraction = kNone;  ///< the children's indices
+    float kr = 0, kt = 0;  ///< the coefficients that scale them (m.reflection, m.transparency)
+    bool traced = false;   ///< c and distance known (a camera hit, or traced depth-first)
+    float distance = kInfinity;
+    Rgb c{0.0f};  ///< the local colour, then all of the colour trace_impl() returns
+};
+
+}  // namespace
+
+void RayTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit* shaded,
+                            uint64_t packed, TraceCounters& counters, Rgb* out,
+                            uint64_t* tree_rays) const {
+    thread_local std::vector<TreeRay> nodes;
+    nodes.clear();
+    nodes.reserve(kMaxTreeRays);
+    const auto material = [&](const Hit& hit) -> const Material& {
+        return settings_.materials[material_at(scene_.shapes[hit.shape], hit)];
+    };
+    // The secondary rays of node i, hit at sp by a ray in direction D, as trace_impl() spawns
+    // and counts them: queued for the next level, or (beyond kMaxTreeRays) traced at once.
+    const auto spawn = [&](size_t i, const Vec3& D, const SurfacePoint& sp, const Material& m) {
+        const TreeRay parent = nodes[i];
+        if (parent.depth >= max_depth_ || (m.reflection <= 0 && m.transparency <= 0)) return;
+        const Bounce b = bounce(D, sp, m);
+        const auto child = [&](const Vec3& dir, float coefficient, uint64_t& count) {
+            const float w = parent.weight * coefficient;
+            if (w < min_weight_) return TreeRay::kSkipped;
+            ++count;
+            ++tree_rays[parent.sample];
+            TreeRay r;
+            r.ray = spawn_ray(sp.P, sp.Ng, dir);
+            r.weight = w;
+            r.depth = parent.depth + 1;
+            r.sample = parent.sample;
+            if (nodes.size() >= kMaxTreeRays) {  // too many to keep: depth-first
+                const uint64_t before = work_of(counters);
+                r.c = trace_impl<false>(r.ray, r.depth, w, counters, r.distance, nullptr);
+                r.traced = true;
+                tree_rays[parent.sample] += work_of(counters) - before;
+            }
+            nodes.push_back(r);
+            return static_cast<int>(nodes.size() - 1);
+        };
+        if (m.reflection > 0) {
+            nodes[i].reflection = child(b.reflected, m.reflection, counters.reflection);
+            nodes[i].kr = m.reflection;
+        }
+        if (m.transparency > 0) {
+            nodes[i].refraction = child(b.refracted, m.transparency, counters.refraction);
+            nodes[i].kt = m.transparency;
+        }
+    };
+    // Level 0: the camera hits, shaded already, then their secondary rays.
+    for (uint64_t left = packed; left != 0; left &= left - 1) {
+        TreeRay& r = nodes.emplace_back();
+        r.sample = __builtin_ctzll(left);
+        r.traced = true;
+        r.c = shaded[r.sample].local;
+    }
+    const size_t roots = nodes.size();
+    for (size_t i = 0; i < roots; ++i) {
+        const int k = nodes[i].sample;
+        spawn(i, rays[k].direction, shaded[k].sp, material(hits[k]));
+    }
+    // Level by level: the rays of one depth eight at a time, found and shaded side by side.
+    for (size_t begin = roots, end; begin < nodes.size(); begin = end) {
+        end = nodes.size();
+        for (size_t i = begin; i < end;) {
+            size_t group[kMaxPacket];
+            Ray r[kMaxPacket];
+            int q = 0;
+            for (; i < end && q < kMaxPacket; ++i) {
+                if (nodes[i].traced) continue;
+                group[q] = i;
+                r[q++] = nodes[i].ray;
+            }
+            if (q == 0) break;
+            if (cancel_ && cancel_->load(std::memory_order_relaxed)) {  // as trace_impl()
+                for (int j = 0; j < q; ++j) nodes[group[j]].c = Rgb{0.0f};
+                continue;
+            }
+            Hit h[kMaxPacket];
+            bool found[kMaxPacket] = {};
+            nearest_hits_scattered(scene_, r, q, 0.0f, kInfinity, h, found, counters.tests);
+            unsigned which = 0;
+            for (int j = 0; j < q; ++j) {
+                if (found[j]) {
+                    which |= 1u << j;
+                    nodes[group[j]].distance = h[j].t;
+                } else {
+                    nodes[group[j]].c = settings_.image.background;  // distance: infinity
+                }
+            }
+            if (which == 0) continue;
+            ShadedHit s[kMaxPacket];
+            shade_hits(r, h, which, counters, s);
+            for (unsigned left = which; left != 0; left &= left - 1) {
+                const int j = __builtin_ctz(left);
+                TreeRay& node = nodes[group[j]];
+                node.c = s[j].local;
+                counters.shadow += s[j].shadow_rays;
+                tree_rays[node.sample] += s[j].shadow_rays;
+                spawn(group[j], r[j].direction, s[j].sp, material(h[j]));
+            }
+        }
+    }
+    // The colours, children before parents (they come later), each added as trace_impl()
+    // adds it: local + (reflected)·kr + (refracted)·kt, A = 1/(d+K) if tree_attenuation.
+    const float K = settings_.attenuation_k;
+    const auto returned = [&](int child) {
+        if (child == TreeRay::kSkipped) return Rgb{0.0f};
+        const TreeRay& r = nodes[static_cast<size_t>(child)];
+        if (!tree_attenuation_) return r.c;
+        return std::isinf(r.distance) ? Rgb{0.0f} : r.c * (1.0f / (r.distance + K));
+    };
+    for (size_t i = nodes.size(); i-- > 0;) {
+        TreeRay& r = nodes[i];
+        if (r.reflection != TreeRay::kNone) r.c += returned(r.reflection) * r.kr;
+        if (r.refraction != TreeRay::kNone) r.c += returned(r.refraction) * r.kt;
+    }
+    for (size_t i = 0; i < roots; ++i) out[nodes[i].sample] = nodes[i].c;
+}
+
 void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& counters, Rgb* out,
                         uint64_t* rays) const {
-    for (int first = 0; first < n; first += kMaxPacket) {
-        const int m = std::min(kMaxPacket, n - first);
-        Ray camera_rays[kMaxPacket];
-        Hit hits[kMaxPacket];
-        bool found[kMaxPacket] = {};
-        for (int k = 0; k < m; ++k) camera_rays[k] = camera_.ray(px[first + k], py[first + k]);
-        // Timed as sample() times, every kTimedSampleEvery-th sample whole: the packet's query,
-        // when the packet holds one, is timed and counted for each timed sample by its share
-        // (1/m); the others' rays are not timed (a clock read costs as much as a shadow ray).
-        const uint64_t i0 = counters.primary, i1 = i0 + static_cast<uint64_t>(m) - 1;
-        const bool timed =
-            i0 % kTimedSampleEvery == 0 || i0 / kTimedSampleEvery != i1 / kTimedSampleEvery;
-        uint64_t packet_ns = 0;
-        if (!(cancel_ && cancel_->load(std::memory_order_relaxed))) {
-            const auto start =
-                timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
-            nearest_hits(scene_, camera_rays, m, 0.0f, kInfinity, hits, found, counters.tests);
-            if (timed) packet_ns = nanoseconds_since(start);
+    constexpr int kBatch = 64;  // samples whose ray trees are traced together
+    const auto cancelled = [&] { return cancel_ && cancel_->load(std::memory_order_relaxed); };
+    for (int first = 0; first < n; first += kBatch) {
+        const int m = std::min(kBatch, n - first);
+        Ray camera_rays[kBatch];
+        Hit hits[kBatch];
+        bool found[kBatch] = {};
+        ShadedHit shaded[kBatch];
+        uint64_t packet_ns[kBatch / kMaxPacket] = {};
+        uint64_t packed = 0;  // bit k: sample k's camera hit shaded in a packet
+        const uint64_t base = counters.primary;
+        for (int p = 0; p < m; p += kMaxPacket) {
+            const int q = std::min(kMaxPacket, m - p);
+            for (int k = p; k < p + q; ++k)
+                camera_rays[k] = camera_.ray(px[first + k], py[first + k]);
+            // Timed as sample() times, every kTimedSampleEvery-th sample whole: the packet's
+            // query, when the packet holds one, is timed and counted for each timed sample by
+            // its share (1/q); the others' rays are not timed (a clock read costs as much as a
+            // shadow ray).
+            const uint64_t i0 = base + static_cast<uint64_t>(p), i1 = i0 + q - 1;
+            const bool timed =
+                i0 % kTimedSampleEvery == 0 || i0 / kTimedSampleEvery != i1 / kTimedSampleEvery;
+            if (!cancelled()) {
+                const auto start = timed ? std::chrono::steady_clock::now()
+                                         : std::chrono::steady_clock::time_point{};
+                nearest_hits(scene_, camera_rays + p, q, 0.0f, kInfinity, hits + p, found + p,
+                             counters.tests);
+                if (timed) packet_ns[p / kMaxPacket] = nanoseconds_since(start);
+            }
+            // The hits shaded side by side (their shadow rays too), those of untimed samples (a
+            // timed one is traced whole, as sample() traces it) when no light sphere can come
+            // before them.
+            if (visible_lights_.empty() && !cancelled()) {
+                unsigned which = 0;
+                for (int k = 0; k < q; ++k)
+                    if (found[p + k] && (i0 + static_cast<uint64_t>(k)) % kTimedSampleEvery != 0)
+                        which |= 1u << k;
+                if (which != 0) shade_hits(camera_rays + p, hits + p, which, counters, shaded + p);
+                packed |= static_cast<uint64_t>(which) << p;
+            }
         }
-        // The hits shaded side by side (their shadow rays too), those of untimed samples (a
-        // timed one is traced whole, as sample() traces it) when no light sphere can come
-        // before them; trace_impl() then goes on from each with its secondary rays.
-        unsigned packed = 0;
-        ShadedHit shaded[kMaxPacket];
-        if (visible_lights_.empty() && !(cancel_ && cancel_->load(std::memory_order_relaxed))) {
-            for (int k = 0; k < m; ++k)
-                if (found[k] && (i0 + static_cast<uint64_t>(k)) % kTimedSampleEvery != 0)
-                    packed |= 1u << k;
-            if (packed != 0) shade_hits(camera_rays, hits, packed, counters, shaded);
-        }
+        // Their secondary rays, the trees of the batch side by side.
+        Rgb traced[kBatch];
+        uint64_t tree_rays[kBatch] = {};
+        if (packed != 0)
+            trace_trees(camera_rays, hits, shaded, packed, counters, traced, tree_rays);
         for (int k = 0; k < m; ++k) {
             const uint64_t before = work_of(counters);
             const bool timed_sample = counters.primary++ % kTimedSampleEvery == 0;
-            const auto start = timed_sample ? std::chrono::steady_clock::now()
-                                            : std::chrono::steady_clock::time_point{};
-            counters.tests.timing = timed_sample;
-            const std::pair<bool, Hit> primary{found[k], hits[k]};
-            if ((packed >> k) & 1u) counters.shadow += shaded[k].shadow_rays;
-            float distance;
-            out[first + k] =
-                trace_impl<false>(camera_rays[k], 0, 1.0f, counters, distance, nullptr, nullptr,
-                                  &primary, (packed >> k) & 1u ? &shaded[k] : nullptr);
-            counters.tests.timing = false;
-            if (timed_sample) {
-                const uint64_t share = packet_ns / static_cast<uint64_t>(m);
-                counters.tests.query_ns += share;
-                counters.timed_ns += nanoseconds_since(start) + share;
+            const bool in_tree = (packed >> k) & 1u;
+            if (in_tree) {
+                counters.shadow += shaded[k].shadow_rays;
+                out[first + k] = traced[k];
+            } else {
+                const auto start = timed_sample ? std::chrono::steady_clock::now()
+                                                : std::chrono::steady_clock::time_point{};
+                counters.tests.timing = timed_sample;
+                const std::pair<bool, Hit> primary{found[k], hits[k]};
+                float distance;
+                out[first + k] = trace_impl<false>(camera_rays[k], 0, 1.0f, counters, distance,
+                                                   nullptr, nullptr, &primary);
+                counters.tests.timing = false;
+                if (timed_sample) {
+                    const int p = k / kMaxPacket * kMaxPacket;
+                    const uint64_t q = static_cast<uint64_t>(std::min(kMaxPacket, m - p));
+                    const uint64_t share = packet_ns[p / kMaxPacket] / q;
+                    counters.tests.query_ns += share;
+                    counters.timed_ns += nanoseconds_since(start) + share;
+                }
             }
-            if (rays) rays[first + k] = work_of(counters) - before;
+            if (rays) rays[first + k] = work_of(counters) - before + tree_rays[k];
         }
     }
 }

@@ -39,6 +39,10 @@ inline uint64_t primary_rays_of(const TraceCounters& c) { return c.primary; }
 /// A sample tracing more rays than this means an exploding ray tree (the render warns once).
 inline constexpr uint64_t kExplodingTreeRays = 4096;
 
+/// The most secondary rays a batch of samples() keeps to trace level by level (about 1.5 MB a
+/// thread); the rays of deeper trees are traced depth-first.
+inline constexpr size_t kMaxTreeRays = 16384;
+
 /// Offset of secondary and shadow ray origins along the geometric normal (SPEC §1.1: ≤ 1e-4).
 inline constexpr float kRayEpsilon = 1e-4f;
 
@@ -56,6 +60,17 @@ inline Vec3 reflect(const Vec3& D, const Vec3& N) { return D - N * (2 * dot(D, N
 /// (dot(D, N) < 0), from index n1 into n2: n1·sin i = n2·sin r. False on total internal
 /// reflection.
 bool refract(const Vec3& D, const Vec3& N, float n1, float n2, Vec3& T);
+
+/// The directions of the secondary rays leaving a hit `sp` of a ray in unit direction D
+/// (SPEC §1.1). `reflected`: the mirror direction about the normal facing D (two-sided).
+/// `refracted` (only when m.transparency > 0): by Snell's law, from the medium around (1.0)
+/// into m.ior when the ray enters (D against Ng), from m.ior back to 1.0 when it leaves; on
+/// total internal reflection (`tir`) the mirror direction.
+struct Bounce {
+    Vec3 reflected, refracted;
+    bool tir = false;
+};
+Bounce bounce(const Vec3& D, const SurfacePoint& sp, const Material& m);
 
 /// A camera hit shaded with its packet (RayTracer::shade_hits()).
 struct ShadedHit {
@@ -117,6 +132,15 @@ class RayTracer {
     /// shadow rays are counted in out[k].shadow_rays, for the caller to add sample by sample.
     void shade_hits(const Ray* rays, const Hit* hits, unsigned which, TraceCounters& counters,
                     ShadedHit* out) const;
+
+    /// The colours of the camera hits `packed` of a batch (bit k: rays[k], hits[k], shaded[k],
+    /// k < 64) with their secondary rays, into out[k]: the bits and counts trace_impl() gives
+    /// each one by one. The trees are traced level by level, the rays of one depth of all the
+    /// trees side by side (nearest_hits_scattered(), shade_hits()); a batch's trees of more than
+    /// kMaxTreeRays rays go on depth-first. tree_rays[k] receives the rays sample k's secondary
+    /// rays traced (theirs and their shadow rays).
+    void trace_trees(const Ray* rays, const Hit* hits, const ShadedHit* shaded, uint64_t packed,
+                     TraceCounters& counters, Rgb* out, uint64_t* tree_rays) const;
 
     /// The nearest visible light sphere along ray within (0, t_max), or −1.
     int nearest_light(const Ray& ray, float& t_max, TraceCounters& counters) const;

@@ -315,13 +315,57 @@ TEST(Pipelines, RaytraceGivesTheSameBitsForAnyThreadCount) {
 }
 
 // samples() traces neighbouring camera rays as one packet and, in raycast, shades their hits
-// side by side (shade_lanes()); sample() goes one ray at a time with shade(). Both give every
-// pixel the same bits and count the same rays and primitive tests, on scenes with checkers,
-// Schlick's metals, glass, a mesh and a packet's worth of misses.
+// side by side (shade_lanes()); in raytrace their ray trees go level by level, the rays of one
+// depth side by side (trace_trees()). sample() goes one ray at a time with shade() and
+// trace_impl()'s recursion. Both give every pixel the same bits and count the same rays (in
+// all and sample by sample) and primitive tests, on scenes with checkers, Schlick's metals,
+// glass, a mesh and a packet's worth of misses; with the tree's attenuation and min_weight;
+// and with trees larger than a batch keeps (kHall: a closed box of half-mirror, half-clear
+// panes, some 460 rays a pixel at max_depth 11, more than kMaxTreeRays in a run of 61
+// samples: the rest go depth-first).
+constexpr std::string_view kHall = R"json({
+  "image": { "width": 16, "height": 12, "background": [0.2, 0.3, 0.4] },
+  "camera": { "projection": "perspective", "position": [0.1, 0.2, 0.3],
+              "look_at": [-0.4, 0.1, -1], "up": [0, 1, 0], "fov_y": 60 },
+  "render": { "pipeline": "raytrace", "model": "phong", "max_depth": 11, "min_weight": 0 },
+  "lights": [ { "position": [0.3, 0.6, 0.2], "intensity": 2 } ],
+  "materials": {
+    "pane": { "ka": 0.1, "kd": 0.3, "ks": 0.2, "n": 10, "reflection": 0.5,
+              "transparency": 0.4, "ior": 1.0 },
+    "tile": { "ka": 0.1, "kd": 0.6, "ks": 0, "n": 1, "reflection": 0.3, "transparency": 0.3,
+              "ior": 1.0, "checker": { "size": 0.5, "ka": 0.05, "kd": 0.2 } }
+  },
+  "objects": [
+    { "type": "plane", "point": [1, 0, 0], "normal": [-1, 0, 0], "material": "pane" },
+    { "type": "plane", "point": [-1, 0, 0], "normal": [1, 0, 0], "material": "pane" },
+    { "type": "plane", "point": [0, 0, 1], "normal": [0, 0, -1], "material": "pane" },
+    { "type": "plane", "point": [0, 0, -1], "normal": [0, 0, 1], "material": "pane" },
+    { "type": "plane", "point": [0, -1, 0], "normal": [0, 1, 0], "material": "pane" },
+    { "type": "plane", "point": [0, 1.5, 0], "normal": [0, -1, 0], "material": "tile" }
+  ]
+})json";
+
 TEST(Pipelines, PacketsGiveTheBitsAndCountsOfOneRayAtATime) {
-    for (const char* demo : {"demo:whitted", "demo:materials", "demo:bunny"}) {
+    using Overrides = std::vector<Override>;
+    struct Case {
+        const char* demo;  // nullptr: kHall
+        Overrides overrides;
+    };
+    const std::vector<Case> cases = {
+        {"demo:whitted", {}},
+        {"demo:materials", {}},
+        {"demo:bunny", {}},
+        {"demo:whitted", {{"render.tree_attenuation", "true"}, {"render.min_weight", "0.05"}}},
+        {"demo:materials", {{"render.tree_attenuation", "true"}, {"render.min_weight", "0.2"}}},
+        {nullptr, {}},
+    };
+    for (const Case& test : cases) {
         for (const Pipeline pipeline : {Pipeline::raycast, Pipeline::raytrace}) {
-            SceneDesc d = load_scene(demo, {{"image.width", "67"}, {"image.height", "45"}});
+            Overrides overrides = {{"image.width", test.demo ? "67" : "64"},
+                                   {"image.height", test.demo ? "45" : "8"}};
+            overrides.insert(overrides.end(), test.overrides.begin(), test.overrides.end());
+            SceneDesc d = test.demo ? load_scene(test.demo, overrides)
+                                    : parse_scene(kHall, "hall.json", ".", overrides);
             d.render.pipeline = pipeline;
             const BuiltScene scene = build_scene(d);
             const RayTracer tracer(scene, d, pipeline == Pipeline::raytrace);
@@ -335,26 +379,40 @@ TEST(Pipelines, PacketsGiveTheBitsAndCountsOfOneRayAtATime) {
             }
             const int n = static_cast<int>(xs.size());
             std::vector<Rgb> a(xs.size()), b(xs.size());
-            for (int k = 0; k < n; ++k) a[k] = tracer.sample(xs[k], ys[k], one);
+            std::vector<uint64_t> rays_one(xs.size()), rays_packets(xs.size());
+            for (int k = 0; k < n; ++k) {
+                const uint64_t before = work_of(one);
+                a[k] = tracer.sample(xs[k], ys[k], one);
+                rays_one[k] = work_of(one) - before;
+            }
             for (int first = 0; first < n; first += 61)  // uneven runs: partial packets too
-                tracer.samples(&xs[first], &ys[first], std::min(61, n - first), packets, &b[first]);
+                tracer.samples(&xs[first], &ys[first], std::min(61, n - first), packets, &b[first],
+                               &rays_packets[first]);
+            const std::string what = std::string(test.demo ? test.demo : "hall") + " pipeline " +
+                                     std::to_string(static_cast<int>(pipeline)) + " overrides " +
+                                     std::to_string(test.overrides.size());
             int lit = 0;
             for (int k = 0; k < n; ++k) {
                 for (int c = 0; c < 3; ++c) {
                     ASSERT_EQ(std::bit_cast<uint32_t>(a[k][c]), std::bit_cast<uint32_t>(b[k][c]))
-                        << demo << " pipeline " << static_cast<int>(pipeline) << " sample " << k;
+                        << what << " sample " << k;
                 }
+                ASSERT_EQ(rays_one[k], rays_packets[k]) << what << " sample " << k;
                 lit += a[k] != d.image.background;
             }
-            EXPECT_GT(lit, n / 3) << demo;
-            EXPECT_EQ(one.primary, packets.primary);
-            EXPECT_EQ(one.shadow, packets.shadow);
-            EXPECT_EQ(one.reflection, packets.reflection);
-            EXPECT_EQ(one.refraction, packets.refraction);
-            EXPECT_EQ(one.tests.primitive, packets.tests.primitive) << demo;
+            EXPECT_GT(lit, n / 3) << what;
+            EXPECT_EQ(one.primary, packets.primary) << what;
+            EXPECT_EQ(one.shadow, packets.shadow) << what;
+            EXPECT_EQ(one.reflection, packets.reflection) << what;
+            EXPECT_EQ(one.refraction, packets.refraction) << what;
+            EXPECT_EQ(one.tests.primitive, packets.tests.primitive) << what;
+            if (pipeline == Pipeline::raytrace)
+                EXPECT_GT(one.reflection + one.refraction, static_cast<uint64_t>(n / 8)) << what;
             // A packet goes down the BVH nearest child first for the packet, not for each ray:
             // a ray may enter a box it alone would have skipped (more box tests, same hits).
-            if (scene.direct) EXPECT_EQ(one.tests.bounds, packets.tests.bounds) << demo;
+            if (scene.direct) {
+                EXPECT_EQ(one.tests.bounds, packets.tests.bounds) << what;
+            }
         }
     }
 }
