@@ -106,15 +106,20 @@ void nearest_hits_direct(const BuiltScene& scene, const Ray* rays, int n, float 
         const Ray* r = rays + first;
         const int m = std::min(kLanes, n - first);
         const unsigned used = (1u << m) - 1;
-        // Lane l holds ray l (lanes beyond m repeat ray 0 and are never reported).
-        alignas(16) float o[3][kLanes], d[3][kLanes];
-        for (int l = 0; l < kLanes; ++l) {
-            for (int c = 0; c < 3; ++c) {
-                o[c][l] = r[l < m ? l : 0].origin[c];
-                d[c][l] = r[l < m ? l : 0].direction[c];
-            }
-        }
-        const Lane3<F> dir{F::load(d[0]), F::load(d[1]), F::load(d[2])};
+        // Lane l holds ray l (lanes beyond m repeat ray 0 and are never reported), set from
+        // registers: lanes stored one float at a time and loaded as a vector would wait for
+        // the stores (no store forwarding).
+        const Ray& r0 = r[0];
+        const Ray& r1 = r[m > 1 ? 1 : 0];
+        const Ray& r2 = r[m > 2 ? 2 : 0];
+        const Ray& r3 = r[m > 3 ? 3 : 0];
+        const auto lanes_of = [&](const Vec3 Ray::*v, int c) {
+            return F(_mm_setr_ps((r0.*v)[c], (r1.*v)[c], (r2.*v)[c], (r3.*v)[c]));
+        };
+        const Lane3<F> org{lanes_of(&Ray::origin, 0), lanes_of(&Ray::origin, 1),
+                           lanes_of(&Ray::origin, 2)};
+        const Lane3<F> dir{lanes_of(&Ray::direction, 0), lanes_of(&Ray::direction, 1),
+                           lanes_of(&Ray::direction, 2)};
         const F a = dot(dir, dir);  // |d|², as world_sphere_roots() rounds it
         // A ray with |d|² below the pre-test's range, 0 or NaN takes world_sphere_roots()'s
         // other paths: such a packet goes ray by ray.
@@ -133,8 +138,7 @@ void nearest_hits_direct(const BuiltScene& scene, const Ray* rays, int n, float 
                 // world_sphere_roots()'s steps, a ray in each lane (sphere_group_roots(): a
                 // sphere in each lane): the same roots, bit for bit.
                 const F rr(g.rr[s]);
-                const Lane3<F> os{F::load(o[0]) - F(g.cx[s]), F::load(o[1]) - F(g.cy[s]),
-                                  F::load(o[2]) - F(g.cz[s])};
+                const Lane3<F> os{org.x - F(g.cx[s]), org.y - F(g.cy[s]), org.z - F(g.cz[s])};
                 const ray_sphere::Terms<F> k = ray_sphere::terms(os, dir, rr);
                 const unsigned near = ~ray_sphere::surely_misses(a, k, rr).bits() & used;
                 unsigned slow = 0;

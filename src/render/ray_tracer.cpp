@@ -297,6 +297,7 @@ void RayTracer::shade_hits(const Ray* rays, const Hit* hits, unsigned which,
         const Material& m = settings_.materials[material_at(shape, hits[k])];
         const SurfacePoint sp = surface_at(shape, rays[k], hits[k]);
         out[k].sp = sp;
+        out[k].shadow_rays = 0;  // raycast; raytrace counts them below
         const SurfaceConstants c = surface_constants(m, sp.P, sp.Ng);
         const Vec3 S = -rays[k].direction;
         for (int a = 0; a < 3; ++a) {
@@ -362,12 +363,33 @@ struct TreeRay {
     Rgb c{0.0f};  ///< the local colour, then all of the colour trace_impl() returns
 };
 
+/// The arrays a batch of samples() and its trees fill, kept per thread: zeroing them for every
+/// batch and level (their members' defaults) took 6 % of a Whitted frame.
+struct BatchArrays {
+    static constexpr int kBatch = 64;  ///< samples whose ray trees are traced together
+    Ray camera_rays[kBatch];
+    Hit hits[kBatch];
+    ShadedHit shaded[kBatch];
+    Rgb traced[kBatch];
+    // a level's group of rays in trace_trees()
+    Ray group_rays[kMaxPacket];
+    Hit group_hits[kMaxPacket];
+    ShadedHit group_shaded[kMaxPacket];
+    std::vector<TreeRay> nodes;  ///< the trees (trace_trees())
+};
+
+BatchArrays& batch_arrays() {
+    thread_local BatchArrays arrays;
+    return arrays;
+}
+
 }  // namespace
 
 void RayTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit* shaded,
                             uint64_t packed, TraceCounters& counters, Rgb* out,
                             uint64_t* tree_rays) const {
-    thread_local std::vector<TreeRay> nodes;
+    BatchArrays& arrays = batch_arrays();
+    std::vector<TreeRay>& nodes = arrays.nodes;
     nodes.clear();
     nodes.reserve(kMaxTreeRays);
     const auto material = [&](const Hit& hit) -> const Material& {
@@ -424,7 +446,7 @@ void RayTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit* s
         end = nodes.size();
         for (size_t i = begin; i < end;) {
             size_t group[kMaxPacket];
-            Ray r[kMaxPacket];
+            Ray* const r = arrays.group_rays;
             int q = 0;
             for (; i < end && q < kMaxPacket; ++i) {
                 if (nodes[i].traced) continue;
@@ -436,7 +458,7 @@ void RayTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit* s
                 for (int j = 0; j < q; ++j) nodes[group[j]].c = Rgb{0.0f};
                 continue;
             }
-            Hit h[kMaxPacket];
+            Hit* const h = arrays.group_hits;
             bool found[kMaxPacket] = {};
             nearest_hits_scattered(scene_, r, q, 0.0f, kInfinity, h, found, counters.tests);
             unsigned which = 0;
@@ -449,7 +471,7 @@ void RayTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit* s
                 }
             }
             if (which == 0) continue;
-            ShadedHit s[kMaxPacket];
+            ShadedHit* const s = arrays.group_shaded;
             shade_hits(r, h, which, counters, s);
             for (unsigned left = which; left != 0; left &= left - 1) {
                 const int j = __builtin_ctz(left);
@@ -480,14 +502,16 @@ void RayTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit* s
 
 void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& counters, Rgb* out,
                         uint64_t* rays) const {
-    constexpr int kBatch = 64;  // samples whose ray trees are traced together
+    constexpr int kBatch = BatchArrays::kBatch;
     const auto cancelled = [&] { return cancel_ && cancel_->load(std::memory_order_relaxed); };
+    BatchArrays& arrays = batch_arrays();
+    Ray* const camera_rays = arrays.camera_rays;
+    Hit* const hits = arrays.hits;
+    ShadedHit* const shaded = arrays.shaded;
+    Rgb* const traced = arrays.traced;
     for (int first = 0; first < n; first += kBatch) {
         const int m = std::min(kBatch, n - first);
-        Ray camera_rays[kBatch];
-        Hit hits[kBatch];
         bool found[kBatch] = {};
-        ShadedHit shaded[kBatch];
         uint64_t packet_ns[kBatch / kMaxPacket] = {};
         uint64_t packed = 0;  // bit k: sample k's camera hit shaded in a packet
         const uint64_t base = counters.primary;
@@ -522,7 +546,6 @@ void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& 
             }
         }
         // Their secondary rays, the trees of the batch side by side.
-        Rgb traced[kBatch];
         uint64_t tree_rays[kBatch] = {};
         if (packed != 0)
             trace_trees(camera_rays, hits, shaded, packed, counters, traced, tree_rays);
