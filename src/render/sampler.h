@@ -45,6 +45,9 @@ struct SamplerCounts {
 
 /// Side of the square tiles the samplers work in (pixels).
 inline constexpr int kSamplerTile = 16;
+/// Samples of a tile taken together (sample_points()) when a tile has no antialiasing: four of
+/// its rows, the batch whose ray trees the ray tracer traces side by side (RayTracer::samples()).
+inline constexpr int kSamplerRun = 64;
 
 /// The work a work item's counters have counted so far (rays, for the ray tracer's counters:
 /// ray_tracer.h overloads it); progress is reported sooner after costly pixels.
@@ -455,32 +458,35 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
 
     switch (aa.mode) {
         case AaMode::none: {
-            auto code = TileCode{[&](size_t t) {
-                                     const PixelRect r = tile_of(t).clipped(window);
-                                     Counters c{};
-                                     {
-                                         PixelProgress::Item<Counters> tick{progress, c};
-                                         // a row of pixel centres at a time
-                                         const int n = r.width();
-                                         float xs[kSamplerTile], ys[kSamplerTile];
-                                         S row[kSamplerTile];
-                                         for (int y = r.y0; y < r.y1; ++y) {
-                                             for (int i = 0; i < n; ++i) {
-                                                 xs[i] = (r.x0 + i) + 0.5f;
-                                                 ys[i] = y + 0.5f;
-                                             }
-                                             sample_points(colour, xs, ys, n, c, row);
-                                             for (int i = 0; i < n; ++i) {
-                                                 put(out, r.x0 + i, y, row[i]);
-                                                 tick.pixel();
-                                             }
-                                         }
-                                     }
-                                     counters[t] = c;
-                                     counts[t].samples =
-                                         static_cast<uint64_t>(r.width()) * r.height();
-                                 },
-                                 write_pixels, read_pixels};
+            auto code = TileCode{
+                [&](size_t t) {
+                    const PixelRect r = tile_of(t).clipped(window);
+                    Counters c{};
+                    {
+                        PixelProgress::Item<Counters> tick{progress, c};
+                        // kSamplerRun pixel centres at a time, row by row
+                        // (the ray tracer's ray trees fill its lanes level
+                        // by level), then their progress
+                        const int w = r.width(), n = w * r.height();
+                        float xs[kSamplerRun], ys[kSamplerRun];
+                        S run[kSamplerRun];
+                        for (int first = 0; first < n; first += kSamplerRun) {
+                            const int m = std::min(kSamplerRun, n - first);
+                            for (int k = 0; k < m; ++k) {
+                                xs[k] = (r.x0 + (first + k) % w) + 0.5f;
+                                ys[k] = (r.y0 + (first + k) / w) + 0.5f;
+                            }
+                            sample_points(colour, xs, ys, m, c, run);
+                            for (int k = 0; k < m; ++k) {
+                                put(out, r.x0 + (first + k) % w, r.y0 + (first + k) / w, run[k]);
+                                tick.pixel();
+                            }
+                        }
+                    }
+                    counters[t] = c;
+                    counts[t].samples = static_cast<uint64_t>(r.width()) * r.height();
+                },
+                write_pixels, read_pixels};
             run_pass(control, checkpoint, tiles, 0, false, code, elsewhere, rays_of);
             break;
         }
