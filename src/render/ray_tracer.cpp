@@ -398,26 +398,28 @@ void RayTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit* s
     // The secondary rays of node i, hit at sp by a ray in direction D, as trace_impl() spawns
     // and counts them: queued for the next level, or (beyond kMaxTreeRays) traced at once.
     const auto spawn = [&](size_t i, const Vec3& D, const SurfacePoint& sp, const Material& m) {
-        const TreeRay parent = nodes[i];
-        if (parent.depth >= max_depth_ || (m.reflection <= 0 && m.transparency <= 0)) return;
+        // (the parent's fields one by one, the child built in place: no copies of TreeRays)
+        const int depth = nodes[i].depth, sample = nodes[i].sample;
+        const float weight = nodes[i].weight;
+        if (depth >= max_depth_ || (m.reflection <= 0 && m.transparency <= 0)) return;
         const Bounce b = bounce(D, sp, m);
         const auto child = [&](const Vec3& dir, float coefficient, uint64_t& count) {
-            const float w = parent.weight * coefficient;
+            const float w = weight * coefficient;
             if (w < min_weight_) return TreeRay::kSkipped;
             ++count;
-            ++tree_rays[parent.sample];
-            TreeRay r;
+            ++tree_rays[sample];
+            const bool keep = nodes.size() < kMaxTreeRays;
+            TreeRay& r = nodes.emplace_back();
             r.ray = spawn_ray(sp.P, sp.Ng, dir);
             r.weight = w;
-            r.depth = parent.depth + 1;
-            r.sample = parent.sample;
-            if (nodes.size() >= kMaxTreeRays) {  // too many to keep: depth-first
+            r.depth = depth + 1;
+            r.sample = sample;
+            if (!keep) {  // too many to keep for the next level: depth-first
                 const uint64_t before = work_of(counters);
                 r.c = trace_impl<false>(r.ray, r.depth, w, counters, r.distance, nullptr);
                 r.traced = true;
-                tree_rays[parent.sample] += work_of(counters) - before;
+                tree_rays[sample] += work_of(counters) - before;
             }
-            nodes.push_back(r);
             return static_cast<int>(nodes.size() - 1);
         };
         if (m.reflection > 0) {
