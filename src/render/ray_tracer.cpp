@@ -391,7 +391,7 @@ void RayTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit* s
     BatchArrays& arrays = batch_arrays();
     std::vector<TreeRay>& nodes = arrays.nodes;
     nodes.clear();
-    nodes.reserve(kMaxTreeRays);
+    nodes.reserve(3 * kMaxTreeRays);  // the most a batch appends (kMaxTreeRays)
     const auto material = [&](const Hit& hit) -> const Material& {
         return settings_.materials[material_at(scene_.shapes[hit.shape], hit)];
     };
@@ -549,8 +549,14 @@ void RayTracer::samples(const float* px, const float* py, int n, TraceCounters& 
         }
         // Their secondary rays, the trees of the batch side by side.
         uint64_t tree_rays[kBatch] = {};
-        if (packed != 0)
+        if (max_depth_ == 0) {  // raycast, or raytrace without secondary rays: no trees
+            for (uint64_t left = packed; left != 0; left &= left - 1) {
+                const int k = __builtin_ctzll(left);
+                traced[k] = shaded[k].local;
+            }
+        } else if (packed != 0) {
             trace_trees(camera_rays, hits, shaded, packed, counters, traced, tree_rays);
+        }
         for (int k = 0; k < m; ++k) {
             const uint64_t before = work_of(counters);
             const bool timed_sample = counters.primary++ % kTimedSampleEvery == 0;

@@ -39,9 +39,10 @@ inline uint64_t primary_rays_of(const TraceCounters& c) { return c.primary; }
 /// A sample tracing more rays than this means an exploding ray tree (the render warns once).
 inline constexpr uint64_t kExplodingTreeRays = 4096;
 
-/// The most secondary rays a batch of samples() keeps to trace level by level (about 1.5 MB a
-/// thread); the rays of deeper trees are traced depth-first.
-inline constexpr size_t kMaxTreeRays = 16384;
+/// The most rays a batch of samples() keeps to trace level by level (RayTracer::trace_trees());
+/// the rays spawned beyond are traced depth-first at once, so that a batch's list never holds
+/// more than 3·kMaxTreeRays rays (each kept ray spawns two at most): about 0.9 MB a thread.
+inline constexpr size_t kMaxTreeRays = 4096;
 
 /// Offset of secondary and shadow ray origins along the geometric normal (SPEC §1.1: ≤ 1e-4).
 inline constexpr float kRayEpsilon = 1e-4f;
@@ -100,9 +101,11 @@ class RayTracer {
     /// call (counted in `counters`) is timed (TraceCounters::timed_ns, tests.query_ns).
     Rgb sample(float px, float py, TraceCounters& counters) const;
 
-    /// sample() at (px[k], py[k]) for k < n, into out[k] (the same bits), with the camera rays
-    /// of up to kMaxPacket neighbouring points found as one packet (nearest_hits()). When
-    /// `rays` is set, rays[k] receives the rays sample k traced, its primary ray included.
+    /// sample() at (px[k], py[k]) for k < n, into out[k] (the same bits and counts), 64 points
+    /// at a time: the camera rays of up to kMaxPacket neighbouring points found as one packet
+    /// (nearest_hits()) and their hits shaded side by side (shade_hits()), then the secondary
+    /// rays of the 64 ray trees level by level (trace_trees()). When `rays` is set, rays[k]
+    /// receives the rays sample k traced, its primary ray included.
     void samples(const float* px, const float* py, int n, TraceCounters& counters, Rgb* out,
                  uint64_t* rays = nullptr) const;
 
@@ -126,9 +129,10 @@ class RayTracer {
                    const std::pair<bool, Hit>* primary = nullptr,
                    const ShadedHit* shaded = nullptr) const;
 
-    /// shade() at the camera hits `which` (bit k: rays[k], hits[k]) of a packet side by side
-    /// (shade_lanes(); in raytrace the shadow rays towards each light side by side too,
-    /// transmittances()), into out[k]: the bits and counts trace_impl() finds one by one. The
+    /// shade() at the hits `which` (bit k: rays[k], hits[k]) of up to eight rays (a packet of
+    /// camera rays, or a level's secondary rays in trace_trees()) side by side (shade_lanes();
+    /// in raytrace the shadow rays towards each light side by side too, transmittances()),
+    /// into out[k]: the bits and counts trace_impl() finds one by one. The
     /// shadow rays are counted in out[k].shadow_rays, for the caller to add sample by sample.
     void shade_hits(const Ray* rays, const Hit* hits, unsigned which, TraceCounters& counters,
                     ShadedHit* out) const;

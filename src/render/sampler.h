@@ -45,8 +45,9 @@ struct SamplerCounts {
 
 /// Side of the square tiles the samplers work in (pixels).
 inline constexpr int kSamplerTile = 16;
-/// Samples of a tile taken together (sample_points()) when a tile has no antialiasing: four of
-/// its rows, the batch whose ray trees the ray tracer traces side by side (RayTracer::samples()).
+/// Samples of a tile taken together (sample_points()) when a tile has no antialiasing, in row
+/// order (four rows of a whole tile): the batch whose ray trees the ray tracer traces side by
+/// side (RayTracer::samples()). Progress moves by these runs.
 inline constexpr int kSamplerRun = 64;
 
 /// The work a work item's counters have counted so far (rays, for the ray tracer's counters:

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <numbers>
+#include <numeric>
 #include <vector>
 
 #include "image/compare.h"
@@ -321,8 +322,8 @@ TEST(Pipelines, RaytraceGivesTheSameBitsForAnyThreadCount) {
 // all and sample by sample) and primitive tests, on scenes with checkers, Schlick's metals,
 // glass, a mesh and a packet's worth of misses; with the tree's attenuation and min_weight;
 // and with trees larger than a batch keeps (kHall: a closed box of half-mirror, half-clear
-// panes, some 460 rays a pixel at max_depth 11, more than kMaxTreeRays in a run of 61
-// samples: the rest go depth-first).
+// panes, some 230 secondary rays a pixel at max_depth 11, more than kMaxTreeRays in a run of
+// 61 samples: the rest go depth-first); in runs of 61 samples and in one call for them all.
 constexpr std::string_view kHall = R"json({
   "image": { "width": 16, "height": 12, "background": [0.2, 0.3, 0.4] },
   "camera": { "projection": "perspective", "position": [0.1, 0.2, 0.3],
@@ -380,14 +381,31 @@ TEST(Pipelines, PacketsGiveTheBitsAndCountsOfOneRayAtATime) {
             const int n = static_cast<int>(xs.size());
             std::vector<Rgb> a(xs.size()), b(xs.size());
             std::vector<uint64_t> rays_one(xs.size()), rays_packets(xs.size());
+            std::vector<uint64_t> secondary_one(xs.size());  // reflected and refracted rays
             for (int k = 0; k < n; ++k) {
-                const uint64_t before = work_of(one);
+                const uint64_t before = work_of(one), secondary = one.reflection + one.refraction;
                 a[k] = tracer.sample(xs[k], ys[k], one);
                 rays_one[k] = work_of(one) - before;
+                secondary_one[k] = one.reflection + one.refraction - secondary;
             }
             for (int first = 0; first < n; first += 61)  // uneven runs: partial packets too
                 tracer.samples(&xs[first], &ys[first], std::min(61, n - first), packets, &b[first],
                                &rays_packets[first]);
+            if (!test.demo && pipeline == Pipeline::raytrace) {
+                uint64_t most = 0;  // the most secondary rays of a run of 61 samples
+                for (int first = 0; first < n; first += 61) {
+                    const auto run = secondary_one.begin() + first;
+                    most = std::max(
+                        most, std::accumulate(run, run + std::min(61, n - first), uint64_t{0}));
+                }
+                EXPECT_GT(most, kMaxTreeRays) << "the hall's trees overflow a batch";
+            }
+            // All the samples in one call: several batches of 64.
+            std::vector<Rgb> whole(xs.size());
+            TraceCounters once;
+            tracer.samples(xs.data(), ys.data(), n, once, whole.data());
+            EXPECT_EQ(std::memcmp(whole.data(), b.data(), whole.size() * sizeof(Rgb)), 0);
+            EXPECT_EQ(work_of(once), work_of(one));
             const std::string what = std::string(test.demo ? test.demo : "hall") + " pipeline " +
                                      std::to_string(static_cast<int>(pipeline)) + " overrides " +
                                      std::to_string(test.overrides.size());
@@ -406,8 +424,9 @@ TEST(Pipelines, PacketsGiveTheBitsAndCountsOfOneRayAtATime) {
             EXPECT_EQ(one.reflection, packets.reflection) << what;
             EXPECT_EQ(one.refraction, packets.refraction) << what;
             EXPECT_EQ(one.tests.primitive, packets.tests.primitive) << what;
-            if (pipeline == Pipeline::raytrace)
+            if (pipeline == Pipeline::raytrace) {
                 EXPECT_GT(one.reflection + one.refraction, static_cast<uint64_t>(n / 8)) << what;
+            }
             // A packet goes down the BVH nearest child first for the packet, not for each ray:
             // a ray may enter a box it alone would have skipped (more box tests, same hits).
             if (scene.direct) {
