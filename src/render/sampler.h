@@ -49,6 +49,11 @@ inline constexpr int kSamplerTile = 16;
 /// order (four rows of a whole tile): the batch whose ray trees the ray tracer traces side by
 /// side (RayTracer::samples()). Progress moves by these runs.
 inline constexpr int kSamplerRun = 64;
+/// The work (work_of(): rays, for the ray tracer) a pixel's samples take on average above which
+/// the pixels after them are taken one at a time, so that progress moves pixel by pixel even
+/// when one pixel takes seconds (an exploding ray tree); a tile's first pixel is taken alone to
+/// find out.
+inline constexpr uint64_t kHeavyPixelWork = 4096;
 
 /// The work a work item's counters have counted so far (rays, for the ray tracer's counters:
 /// ray_tracer.h overloads it); progress is reported sooner after costly pixels.
@@ -467,12 +472,14 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                         PixelProgress::Item<Counters> tick{progress, c};
                         // kSamplerRun pixel centres at a time, row by row
                         // (the ray tracer's ray trees fill its lanes level
-                        // by level), then their progress
+                        // by level), then their progress; heavy pixels one
+                        // at a time (kHeavyPixelWork), the tile's first too
                         const int w = r.width(), n = w * r.height();
                         float xs[kSamplerRun], ys[kSamplerRun];
                         S run[kSamplerRun];
-                        for (int first = 0; first < n; first += kSamplerRun) {
-                            const int m = std::min(kSamplerRun, n - first);
+                        for (int first = 0, size = 1, m; first < n; first += m) {
+                            m = std::min(size, n - first);
+                            const uint64_t work = work_of(c);
                             for (int k = 0; k < m; ++k) {
                                 xs[k] = (r.x0 + (first + k) % w) + 0.5f;
                                 ys[k] = (r.y0 + (first + k) / w) + 0.5f;
@@ -482,6 +489,8 @@ SamplerCounts sample_image(const AntialiasDesc& aa, int width, int height,
                                 put(out, r.x0 + (first + k) % w, r.y0 + (first + k) / w, run[k]);
                                 tick.pixel();
                             }
+                            const bool heavy = work_of(c) - work >= kHeavyPixelWork * m;
+                            size = heavy ? 1 : kSamplerRun;
                         }
                     }
                     counters[t] = c;
