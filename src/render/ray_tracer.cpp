@@ -101,7 +101,7 @@ Rgb RayTracer::trace(const Ray& ray, int depth, TraceCounters& counters, float& 
 template <bool kRecord, bool kTerms>
 Rgb RayTracer::trace_impl(const Ray& ray, int depth, float weight, TraceCounters& counters,
                           float& distance, RayTree* tree_in, TermSample* terms_in,
-                          const std::pair<bool, Hit>* primary, const ShadedHit* shaded) const {
+                          const std::pair<bool, Hit>* primary) const {
     // Cancelled: return at once, so that even an exploding ray tree stops within a moment (a
     // relaxed load per ray: no measurable cost).
     if (cancel_ && cancel_->load(std::memory_order_relaxed)) {
@@ -154,7 +154,7 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, float weight, TraceCounters
     // The local model at P, with S = −ray.direction and shadow rays (raytrace).
     const Shape& shape = scene_.shapes[hit.shape];
     const Material& m = desc.materials[material_at(shape, hit)];
-    const SurfacePoint sp = shaded ? shaded->sp : surface_at(shape, ray, hit);
+    const SurfacePoint sp = surface_at(shape, ray, hit);
     const Vec3 D = ray.direction;
     const ShadingPoint p{sp.P, sp.N, sp.Ng, -D, &m};
     ShadeTerms terms;
@@ -174,9 +174,7 @@ Rgb RayTracer::trace_impl(const Ray& ray, int depth, float weight, TraceCounters
         terms_out = &terms;
     }
     Rgb c;
-    if (shaded) {
-        c = shaded->local;
-    } else if (full_) {
+    if (full_) {
         auto visibility = [&](size_t, const Vec3& P, const Vec3& L, float d) {
             ++counters.shadow;
             // The segment P → light j moved by the spawn offset (≤ 1e-4): direction L, length d.

@@ -122,12 +122,10 @@ class RayTracer {
     /// `weight`: the product of the coefficients that scale this ray (1 for a primary ray).
     /// `primary`: the ray's nearest object hit when the caller has found it already (found,
     /// hit), as nearest_hit() gives it.
-    /// `shaded`: the hit's surface point and local colour, when shade_hits() found them.
     template <bool kRecord, bool kTerms = false>
     Rgb trace_impl(const Ray& ray, int depth, float weight, TraceCounters& counters,
                    float& distance, RayTree* tree_in, TermSample* terms = nullptr,
-                   const std::pair<bool, Hit>* primary = nullptr,
-                   const ShadedHit* shaded = nullptr) const;
+                   const std::pair<bool, Hit>* primary = nullptr) const;
 
     /// shade() at the hits `which` (bit k: rays[k], hits[k]) of up to eight rays (a packet of
     /// camera rays, or a level's secondary rays in trace_trees()) side by side (shade_lanes();
