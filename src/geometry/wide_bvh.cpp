@@ -6,7 +6,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <memory>
 
 namespace luz {
@@ -193,6 +195,10 @@ class Collapser {
 template <int W>
 WideBvh<W>::WideBvh(Bvh&& binary) : order_(std::move(binary.order_)) {
     if (binary.nodes_.empty()) return;
+    const BvhNode& root = binary.nodes_[0];
+    reach_ = 0.0f;
+    for (int a = 0; a < 3; ++a)
+        reach_ = std::max({reach_, std::fabs(root.lo[a]), std::fabs(root.hi[a])});
     Collapser<W> collapser(binary.nodes_);
     nodes_.resize(collapser.count(0, 0));
     collapser.fill(0, 0, 0, nodes_.data());

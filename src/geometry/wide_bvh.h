@@ -113,6 +113,7 @@ class WideBvh {
     static constexpr int kStack = (W - 1) * Bvh::kMaxDepth + 4;  // ≤ W − 1 pushes per level
     std::vector<Node> nodes_;
     std::vector<uint32_t> order_;
+    float reach_ = std::numeric_limits<float>::infinity();  // max |coordinate| of the boxes
 };
 
 using Bvh4 = WideBvh<4>;
@@ -129,32 +130,86 @@ struct WideRay {
 #elif defined(__SSE2__)
     __m128 o[3], inv[3];
 #endif
-    float os[3], invs[3];
+    float os[4], invs[4];            // x, y, z (and a fourth lane for SSE stores)
     uint32_t near_at[3], far_at[3];  // byte offsets in WideBvhNode<W>
     /// Every 1/direction finite and t_min ≥ 0: no slab distance is NaN, and the entry (a
     /// maximum with t_min) is ≥ 0, so that maxima and minima of the distances may be taken on
     /// their bits as integers (one cycle instead of four), with the same results (hit_wide()).
     bool as_ints = false;
+#if defined(__AVX2__) && defined(__FMA__)
+    /// The padded slab test (hit_wide()): t = plane·inv + c, one fused multiply-add, with
+    /// c = −o·inv ∓ m per axis (near, far planes), m = 2⁻²¹·(reach + |o|)·|inv|.
+    __m256 c_near[3], c_far[3];
+    bool padded = false;
+#endif
 
-    WideRay(const Ray& r, float t_min) {
-        as_ints = t_min >= 0.0f;
+    /// `reach`: the largest |coordinate| of any box the ray will be tested against (the
+    /// tree's; +∞ if unknown, which leaves the padded test off). Every ray of a traversal
+    /// starts here, so the three axes are prepared side by side in SSE lanes.
+    WideRay(const Ray& r, float t_min, float reach = std::numeric_limits<float>::infinity()) {
+#if defined(__SSE2__)
+        const __m128 o4 = _mm_setr_ps(r.origin.x, r.origin.y, r.origin.z, 0.0f);
+        const __m128 inv4 = _mm_div_ps(
+            _mm_set1_ps(1.0f), _mm_setr_ps(r.direction.x, r.direction.y, r.direction.z, 1.0f));
+        _mm_storeu_ps(os, o4);
+        _mm_storeu_ps(invs, inv4);
+        const __m128 magnitude = _mm_castsi128_ps(_mm_set1_epi32(0x7FFFFFFF));
+        const __m128 infinity = _mm_set1_ps(std::numeric_limits<float>::infinity());
+        const int negative = _mm_movemask_ps(inv4);  // sign bits: −∞ for a −0 component
+        const bool finite =
+            (_mm_movemask_ps(_mm_cmplt_ps(_mm_and_ps(inv4, magnitude), infinity)) & 7) == 7;
+#else
+        int negative = 0;
+        bool finite = true;
         for (int a = 0; a < 3; ++a) {
             os[a] = r.origin[a];
             invs[a] = 1.0f / r.direction[a];
+            negative |= std::signbit(invs[a]) << a;
+            finite = finite && std::isfinite(invs[a]);
+        }
+#endif
+        as_ints = t_min >= 0.0f && finite;
+        for (int a = 0; a < 3; ++a) {
 #if defined(__AVX__)
-            o[a] = _mm256_set1_ps(os[a]);
-            inv[a] = _mm256_set1_ps(invs[a]);
+            o[a] = _mm256_broadcast_ss(os + a);
+            inv[a] = _mm256_broadcast_ss(invs + a);
 #elif defined(__SSE2__)
             o[a] = _mm_set1_ps(os[a]);
             inv[a] = _mm_set1_ps(invs[a]);
 #endif
             const uint32_t lo = static_cast<uint32_t>(a * W * 4);
             const uint32_t hi = static_cast<uint32_t>((3 + a) * W * 4);
-            const bool negative = std::signbit(invs[a]);  // −∞ for a −0 component
-            near_at[a] = negative ? hi : lo;
-            far_at[a] = negative ? lo : hi;
-            as_ints = as_ints && std::isfinite(invs[a]);
+            const bool flip = (negative >> a) & 1;
+            near_at[a] = flip ? hi : lo;
+            far_at[a] = flip ? lo : hi;
         }
+#if defined(__AVX2__) && defined(__FMA__)
+        // Rounding: plane·inv + c differs from (plane − o)/direction by less than
+        // 4·2⁻²⁴·(|plane| + |o|)·|inv| ≤ m/2 (the rounding of 1/direction, of o·inv, of c
+        // and of the fused result), so that the near distance is lowered and the far one
+        // raised by at least what rounding could move them: the hit children are a superset
+        // of the exact test's, each entry at most the exact one. m normal and every c finite
+        // keep every distance finite, never NaN nor −0 (see hit_wide()).
+        const __m128 m =
+            _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(0x1p-21f),
+                                  _mm_add_ps(_mm_set1_ps(reach), _mm_and_ps(o4, magnitude))),
+                       _mm_and_ps(inv4, magnitude));
+        const __m128 c = _mm_sub_ps(_mm_setzero_ps(), _mm_mul_ps(o4, inv4));
+        const __m128 cn = _mm_sub_ps(c, m), cf = _mm_add_ps(c, m);
+        const __m128 ok =
+            _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(m, _mm_set1_ps(std::numeric_limits<float>::min())),
+                                  _mm_cmplt_ps(m, infinity)),
+                       _mm_and_ps(_mm_cmplt_ps(_mm_and_ps(cn, magnitude), infinity),
+                                  _mm_cmplt_ps(_mm_and_ps(cf, magnitude), infinity)));
+        padded = as_ints && (_mm_movemask_ps(ok) & 7) == 7;
+        alignas(16) float near_c[4], far_c[4];
+        _mm_store_ps(near_c, cn);
+        _mm_store_ps(far_c, cf);
+        for (int a = 0; a < 3; ++a) {
+            c_near[a] = _mm256_broadcast_ss(near_c + a);
+            c_far[a] = _mm256_broadcast_ss(far_c + a);
+        }
+#endif
     }
 };
 
@@ -196,6 +251,34 @@ template <int W>
 inline int hit_wide(const WideBvhNode<W>& n, const WideRay<W>& r, float t_min, float t_max,
                     float* entry) {
     const char* base = reinterpret_cast<const char*>(&n);
+#if defined(__AVX2__) && defined(__FMA__)
+    // The padded test (WideRay::padded): t = plane·inv + c in one rounding, the near planes'
+    // distances lowered and the far ones' raised past any rounding, so that it hits at least
+    // the children the exact test below hits, at entries no later. As there, maxima and
+    // minima on the bits as integers; the comparison too: the entry is ≥ 0 and no distance
+    // is −0 or NaN (m > 0), so tn > tf as integers exactly when as floats.
+    if constexpr (W == 8) {
+        if (r.padded) {
+            __m256i t0[3], t1[3];
+            for (int a = 0; a < 3; ++a) {
+                const __m256 near_plane =
+                    _mm256_load_ps(reinterpret_cast<const float*>(base + r.near_at[a]));
+                const __m256 far_plane =
+                    _mm256_load_ps(reinterpret_cast<const float*>(base + r.far_at[a]));
+                t0[a] = _mm256_castps_si256(_mm256_fmadd_ps(near_plane, r.inv[a], r.c_near[a]));
+                t1[a] = _mm256_castps_si256(_mm256_fmadd_ps(far_plane, r.inv[a], r.c_far[a]));
+            }
+            const __m256i tn = _mm256_max_epi32(
+                _mm256_max_epi32(t0[0], t0[1]),
+                _mm256_max_epi32(t0[2], _mm256_castps_si256(_mm256_set1_ps(t_min))));
+            const __m256i tf = _mm256_min_epi32(
+                _mm256_min_epi32(t1[0], t1[1]),
+                _mm256_min_epi32(t1[2], _mm256_castps_si256(_mm256_set1_ps(t_max))));
+            _mm256_storeu_ps(entry, _mm256_castsi256_ps(tn));
+            return ~_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(tn, tf))) & 0xFF;
+        }
+    }
+#endif
 #if defined(__AVX2__)
     // No NaN and an entry ≥ 0 (WideRay::as_ints): a float's bits ordered as an integer order
     // non-negative floats as floats do, and put every negative one below them. The entry, a
@@ -311,7 +394,7 @@ void WideBvh<W>::nearest_leaves(const Ray& r, float t_min, float& t_max, uint64_
     };
     Entry stack[kStack];
     int top = 0;
-    const WideRay<W> wr(r, t_min);
+    const WideRay<W> wr(r, t_min, reach_);
     Entry cur{0, 0, t_min};
     for (;;) {
         if (cur.count > 0) {
@@ -382,7 +465,7 @@ bool WideBvh<W>::any_leaves(const Ray& r, float t_min, float t_max, uint64_t& bo
     };
     Entry stack[kStack];
     int top = 0;
-    const WideRay<W> wr(r, t_min);
+    const WideRay<W> wr(r, t_min, reach_);
     const float limit = with_margin(t_max);
     Entry cur{0, 0};
     for (;;) {
