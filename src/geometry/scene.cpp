@@ -88,7 +88,7 @@ void build_bvh(BuiltScene& scene) {
     // are left out); the order itself is not kept.
     const std::vector<uint32_t> order = scene.bvh.take_order();
     constexpr uint32_t L = PrimBlock::kLanes;
-    std::vector<PrimBlock>& blocks = scene.bvh_blocks;
+    auto& blocks = scene.bvh_blocks;
     blocks.clear();
     size_t block_count = 0;
     for (const Bvh8::Node& n : scene.bvh.nodes())

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/huge_pages.h"
 #include "geometry/prim_block.h"
 #include "geometry/shape.h"
 #include "geometry/sphere_group.h"
@@ -36,8 +37,8 @@ struct BuiltScene {
     // blocks of four, collapsed to 8-wide nodes (wide_bvh.h).
     Bvh8 bvh;
     /// The BVH's primitives: slot s is lane s % 4 of block s / 4; each leaf starts a block
-    /// (the lanes after its end are padding).
-    std::vector<PrimBlock> bvh_blocks;
+    /// (the lanes after its end are padding). On huge pages when large (huge_pages.h).
+    std::vector<PrimBlock, HugePageAllocator<PrimBlock>> bvh_blocks;
     std::vector<uint32_t> unbounded;  ///< shapes outside the BVH (planes), in scene order
     bool has_bvh = false;  ///< build_bvh() ran: with render.accel bvh, queries use the BVH or
                            ///< (`direct`) test the few shapes in order

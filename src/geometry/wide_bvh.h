@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "geometry/bvh.h"
+#include "geometry/huge_pages.h"
 
 namespace luz {
 
@@ -39,6 +40,8 @@ class WideBvh {
 
   public:
     using Node = WideBvhNode<W>;
+    /// The nodes, on huge pages when large (geometry/huge_pages.h).
+    using Nodes = std::vector<Node, HugePageAllocator<Node>>;
 
     WideBvh() = default;
     /// Collapses a binary BVH (taking its leaf order): each wide node gathers up to W
@@ -53,7 +56,7 @@ class WideBvh {
     }
 
     bool empty() const { return nodes_.empty(); }
-    const std::vector<Node>& nodes() const { return nodes_; }
+    const Nodes& nodes() const { return nodes_; }
     /// Primitive ids in leaf order, as Bvh::order().
     const std::vector<uint32_t>& order() const { return order_; }
     /// Moves the leaf order out, for an owner that keeps its primitives in leaf order (slot i
@@ -111,7 +114,7 @@ class WideBvh {
 
   private:
     static constexpr int kStack = (W - 1) * Bvh::kMaxDepth + 4;  // ≤ W − 1 pushes per level
-    std::vector<Node> nodes_;
+    Nodes nodes_;
     std::vector<uint32_t> order_;
     float reach_ = std::numeric_limits<float>::infinity();  // max |coordinate| of the boxes
 };

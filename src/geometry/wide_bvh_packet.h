@@ -68,7 +68,7 @@ template <class Test>
 void nearest_packet(const Bvh8& bvh, const RayPacket& p, unsigned active, float t_min, float* t_max,
                     uint64_t& box_tests, Test&& test) {
     using namespace packet_detail;
-    const std::vector<Bvh8::Node>& nodes = bvh.nodes();
+    const Bvh8::Nodes& nodes = bvh.nodes();
     if (nodes.empty() || active == 0) return;
     const BoxRays rays(p);
     const Lane8f t_min8 = lanes(t_min);
