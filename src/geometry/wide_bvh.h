@@ -149,7 +149,8 @@ struct WideRay {
     /// `reach`: the largest |coordinate| of any box the ray will be tested against (the
     /// tree's; +∞ if unknown, which leaves the padded test off). Every ray of a traversal
     /// starts here, so the three axes are prepared side by side in SSE lanes.
-    WideRay(const Ray& r, float t_min, float reach = std::numeric_limits<float>::infinity()) {
+    WideRay(const Ray& r, float t_min,
+            [[maybe_unused]] float reach = std::numeric_limits<float>::infinity()) {
 #if defined(__SSE2__)
         const __m128 o4 = _mm_setr_ps(r.origin.x, r.origin.y, r.origin.z, 0.0f);
         const __m128 inv4 = _mm_div_ps(
@@ -398,6 +399,7 @@ void WideBvh<W>::nearest_leaves(const Ray& r, float t_min, float& t_max, uint64_
     Entry stack[kStack];
     int top = 0;
     const WideRay<W> wr(r, t_min, reach_);
+    uint64_t visits = 0;  // counted here, added to box_tests at the end (not through memory)
     Entry cur{0, 0, t_min};
     for (;;) {
         if (cur.count > 0) {
@@ -405,7 +407,7 @@ void WideBvh<W>::nearest_leaves(const Ray& r, float t_min, float& t_max, uint64_
         } else {
             const Node& n = nodes[cur.child];
             float e[W];
-            box_tests += W;
+            ++visits;
             unsigned mask = static_cast<unsigned>(hit_wide<W>(n, wr, t_min, with_margin(t_max), e));
             if (mask != 0) {
                 // one hit: go there; two: the nearer now, the farther later; more: sorted
@@ -446,7 +448,10 @@ void WideBvh<W>::nearest_leaves(const Ray& r, float t_min, float& t_max, uint64_
         }
         // next entry from the stack, skipping those entered beyond the nearest hit so far
         for (;;) {
-            if (top == 0) return;
+            if (top == 0) {
+                box_tests += W * visits;
+                return;
+            }
             const Entry& s = stack[--top];
             if (s.entry <= with_margin(t_max)) {
                 cur = s;
@@ -470,14 +475,18 @@ bool WideBvh<W>::any_leaves(const Ray& r, float t_min, float t_max, uint64_t& bo
     int top = 0;
     const WideRay<W> wr(r, t_min, reach_);
     const float limit = with_margin(t_max);
+    uint64_t visits = 0;  // as in nearest_leaves()
     Entry cur{0, 0};
     for (;;) {
         if (cur.count > 0) {
-            if (visit(cur.child, cur.count)) return true;
+            if (visit(cur.child, cur.count)) {
+                box_tests += W * visits;
+                return true;
+            }
         } else {
             const Node& n = nodes[cur.child];
             float e[W];
-            box_tests += W;
+            ++visits;
             unsigned mask = static_cast<unsigned>(hit_wide<W>(n, wr, t_min, limit, e));
             if (mask != 0) {
                 int k = __builtin_ctz(mask);
@@ -489,7 +498,10 @@ bool WideBvh<W>::any_leaves(const Ray& r, float t_min, float t_max, uint64_t& bo
                 continue;
             }
         }
-        if (top == 0) return false;
+        if (top == 0) {
+            box_tests += W * visits;
+            return false;
+        }
         cur = stack[--top];
     }
 }
