@@ -4,11 +4,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/huge_pages.h"
 #include "geometry/prim_block.h"
 #include "geometry/shape.h"
 #include "geometry/sphere_group.h"
 #include "geometry/wide_bvh.h"
+#include "math/huge_pages.h"
 #include "scene/scene_desc.h"
 
 namespace luz {

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "geometry/bvh.h"
-#include "geometry/huge_pages.h"
+#include "math/huge_pages.h"
 
 namespace luz {
 
@@ -40,7 +40,7 @@ class WideBvh {
 
   public:
     using Node = WideBvhNode<W>;
-    /// The nodes, on huge pages when large (geometry/huge_pages.h).
+    /// The nodes, on huge pages when large (math/huge_pages.h).
     using Nodes = std::vector<Node, HugePageAllocator<Node>>;
 
     WideBvh() = default;

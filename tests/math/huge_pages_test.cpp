@@ -1,7 +1,7 @@
-// HugePageAllocator: large arrays 2 MiB-aligned (so that whole huge pages back them), small ones
-// as any allocation; vectors built on it copy, grow and free like any vector. Whether the kernel
-// gives huge pages is its choice (THP "never" refuses): that is reported, not required.
-#include "geometry/huge_pages.h"
+// HugePageAllocator: arrays of 4 MiB and more 2 MiB-aligned (whole huge pages back them), smaller
+// ones as their type asks; vectors built on it copy, grow and free like any vector. Whether the
+// kernel gives huge pages is its choice (THP "never" refuses): that is reported, not required.
+#include "math/huge_pages.h"
 
 #include <gtest/gtest.h>
 
