@@ -188,30 +188,32 @@ struct WideRay {
             far_at[a] = flip ? lo : hi;
         }
 #if defined(__AVX2__) && defined(__FMA__)
-        // Rounding: plane·inv + c differs from (plane − o)/direction by less than
-        // 4·2⁻²⁴·(|plane| + |o|)·|inv| ≤ m/2 (the rounding of 1/direction, of o·inv, of c
-        // and of the fused result), so that the near distance is lowered and the far one
-        // raised by at least what rounding could move them: the hit children are a superset
-        // of the exact test's, each entry at most the exact one. m normal and every c finite
-        // keep every distance finite, never NaN nor −0 (see hit_wide()).
-        const __m128 m =
-            _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(0x1p-21f),
-                                  _mm_add_ps(_mm_set1_ps(reach), _mm_and_ps(o4, magnitude))),
-                       _mm_and_ps(inv4, magnitude));
-        const __m128 c = _mm_sub_ps(_mm_setzero_ps(), _mm_mul_ps(o4, inv4));
-        const __m128 cn = _mm_sub_ps(c, m), cf = _mm_add_ps(c, m);
-        const __m128 ok =
-            _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(m, _mm_set1_ps(std::numeric_limits<float>::min())),
-                                  _mm_cmplt_ps(m, infinity)),
-                       _mm_and_ps(_mm_cmplt_ps(_mm_and_ps(cn, magnitude), infinity),
-                                  _mm_cmplt_ps(_mm_and_ps(cf, magnitude), infinity)));
-        padded = as_ints && (_mm_movemask_ps(ok) & 7) == 7;
-        alignas(16) float near_c[4], far_c[4];
-        _mm_store_ps(near_c, cn);
-        _mm_store_ps(far_c, cf);
-        for (int a = 0; a < 3; ++a) {
-            c_near[a] = _mm256_broadcast_ss(near_c + a);
-            c_far[a] = _mm256_broadcast_ss(far_c + a);
+        if constexpr (W == 8) {  // only hit_wide<8>() has the padded test
+            // Rounding: plane·inv + c differs from (plane − o)/direction by less than
+            // 4·2⁻²⁴·(|plane| + |o|)·|inv| ≤ m/2 (the rounding of 1/direction, of o·inv, of c
+            // and of the fused result), so that the near distance is lowered and the far one
+            // raised by at least what rounding could move them: the hit children are a superset
+            // of the exact test's, each entry at most the exact one. m normal and every c finite
+            // keep every distance finite, never NaN nor −0 (see hit_wide()).
+            const __m128 m =
+                _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(0x1p-21f),
+                                      _mm_add_ps(_mm_set1_ps(reach), _mm_and_ps(o4, magnitude))),
+                           _mm_and_ps(inv4, magnitude));
+            const __m128 c = _mm_sub_ps(_mm_setzero_ps(), _mm_mul_ps(o4, inv4));
+            const __m128 cn = _mm_sub_ps(c, m), cf = _mm_add_ps(c, m);
+            const __m128 ok = _mm_and_ps(
+                _mm_and_ps(_mm_cmpge_ps(m, _mm_set1_ps(std::numeric_limits<float>::min())),
+                           _mm_cmplt_ps(m, infinity)),
+                _mm_and_ps(_mm_cmplt_ps(_mm_and_ps(cn, magnitude), infinity),
+                           _mm_cmplt_ps(_mm_and_ps(cf, magnitude), infinity)));
+            padded = as_ints && (_mm_movemask_ps(ok) & 7) == 7;
+            alignas(16) float near_c[4], far_c[4];
+            _mm_store_ps(near_c, cn);
+            _mm_store_ps(far_c, cf);
+            for (int a = 0; a < 3; ++a) {
+                c_near[a] = _mm256_broadcast_ss(near_c + a);
+                c_far[a] = _mm256_broadcast_ss(far_c + a);
+            }
         }
 #endif
     }
@@ -248,6 +250,19 @@ inline int hit_lanes4(const char* base, const WideRay<W>& r, float t_min, float 
 }
 #endif
 
+#if defined(__AVX2__)
+/// Eight boxes' entry (the largest of the near distances t0 and t_min) and exit (the least of
+/// the far ones t1 and t_max), taken on the distances' bits as integers (see hit_wide()).
+inline __m256i entry_as_ints(const __m256i (&t0)[3], float t_min) {
+    return _mm256_max_epi32(_mm256_max_epi32(t0[0], t0[1]),
+                            _mm256_max_epi32(t0[2], _mm256_castps_si256(_mm256_set1_ps(t_min))));
+}
+inline __m256i exit_as_ints(const __m256i (&t1)[3], float t_max) {
+    return _mm256_min_epi32(_mm256_min_epi32(t1[0], t1[1]),
+                            _mm256_min_epi32(t1[2], _mm256_castps_si256(_mm256_set1_ps(t_max))));
+}
+#endif
+
 /// The W boxes of n against r over [t_min, t_max]: bit k set if child k is hit, its entry
 /// distance in entry[k]. Per lane the very arithmetic of hit_node(): the same hits and entries
 /// (a NaN from 0·∞ loses in max/min against the running interval, which it leaves as it is).
@@ -272,12 +287,7 @@ inline int hit_wide(const WideBvhNode<W>& n, const WideRay<W>& r, float t_min, f
                 t0[a] = _mm256_castps_si256(_mm256_fmadd_ps(near_plane, r.inv[a], r.c_near[a]));
                 t1[a] = _mm256_castps_si256(_mm256_fmadd_ps(far_plane, r.inv[a], r.c_far[a]));
             }
-            const __m256i tn = _mm256_max_epi32(
-                _mm256_max_epi32(t0[0], t0[1]),
-                _mm256_max_epi32(t0[2], _mm256_castps_si256(_mm256_set1_ps(t_min))));
-            const __m256i tf = _mm256_min_epi32(
-                _mm256_min_epi32(t1[0], t1[1]),
-                _mm256_min_epi32(t1[2], _mm256_castps_si256(_mm256_set1_ps(t_max))));
+            const __m256i tn = entry_as_ints(t0, t_min), tf = exit_as_ints(t1, t_max);
             _mm256_storeu_ps(entry, _mm256_castsi256_ps(tn));
             return ~_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(tn, tf))) & 0xFF;
         }
@@ -306,12 +316,7 @@ inline int hit_wide(const WideBvhNode<W>& n, const WideRay<W>& r, float t_min, f
                 // −0 (the origin on a far plane) is the least integer: make it +0
                 t1[a] = _mm256_andnot_si256(_mm256_cmpeq_epi32(t1[a], negative_zero), t1[a]);
             }
-            const __m256i tn = _mm256_max_epi32(
-                _mm256_max_epi32(t0[0], t0[1]),
-                _mm256_max_epi32(t0[2], _mm256_castps_si256(_mm256_set1_ps(t_min))));
-            const __m256i tf = _mm256_min_epi32(
-                _mm256_min_epi32(t1[0], t1[1]),
-                _mm256_min_epi32(t1[2], _mm256_castps_si256(_mm256_set1_ps(t_max))));
+            const __m256i tn = entry_as_ints(t0, t_min), tf = exit_as_ints(t1, t_max);
             _mm256_storeu_ps(entry, _mm256_castsi256_ps(tn));
             return _mm256_movemask_ps(
                 _mm256_cmp_ps(_mm256_castsi256_ps(tn), _mm256_castsi256_ps(tf), _CMP_LE_OQ));

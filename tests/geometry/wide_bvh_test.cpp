@@ -311,9 +311,18 @@ TEST(WideBvh, EmptyAndSingleLeaf) {
     one.nearest({{0.5f, 0.5f, -1}, {0, 0, 1}}, 0.0f, t_max, tests,
                 [&](uint32_t, float&) { ++visited; });
     EXPECT_EQ(visited, 100);
+    EXPECT_EQ(tests, 8u);  // one node visit: its eight boxes
     visited = 0;
     one.nearest({{5, 5, -1}, {0, 0, 1}}, 0.0f, t_max, tests, [&](uint32_t, float&) { ++visited; });
     EXPECT_EQ(visited, 0);
+    EXPECT_EQ(tests, 16u);
+    // any(): counted whether it stops at a hit or runs out of nodes
+    EXPECT_TRUE(
+        one.any({{0.5f, 0.5f, -1}, {0, 0, 1}}, 0.0f, 10.0f, tests, [](uint32_t) { return true; }));
+    EXPECT_EQ(tests, 24u);
+    EXPECT_FALSE(
+        one.any({{0.5f, 0.5f, -1}, {0, 0, 1}}, 0.0f, 10.0f, tests, [](uint32_t) { return false; }));
+    EXPECT_EQ(tests, 32u);
 }
 
 // hit_wide() on the distances' bits as integers (WideRay::as_ints, AVX2 builds) against the
