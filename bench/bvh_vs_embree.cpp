@@ -304,8 +304,9 @@ struct LuzAccel {
     }
 };
 
-std::vector<Bounds3> triangle_boxes(const Mesh& m) {
-    std::vector<Bounds3> boxes(m.triangle_count());
+/// The triangles' boxes, on huge pages as the renderer's (geometry/scene.cpp).
+HugeVector<Bounds3> triangle_boxes(const Mesh& m) {
+    HugeVector<Bounds3> boxes(m.triangle_count());
     for (size_t t = 0; t < boxes.size(); ++t) {
         Vec3 p0, p1, p2;
         m.vertices(t, p0, p1, p2);

@@ -12,6 +12,8 @@
 #include <cstring>
 #include <memory>
 
+#include "math/huge_pages.h"
+
 namespace luz {
 
 namespace {
@@ -56,6 +58,10 @@ struct alignas(16) Ref {
         return (l + h) * 0.5f;
     }
 };
+
+/// The refs of a build: hundreds of megabytes for millions of primitives, on huge pages (each
+/// 4 KiB page faulted in costs a kernel entry; a 2 MiB one covers 512 of them).
+using Refs = HugeVector<Ref>;
 
 constexpr int kMaxBins = 64;
 constexpr int kMedianDepth = 48;        // deeper nodes split at the median: depth stays < 48 + 32
@@ -131,13 +137,23 @@ I4 bin_of(V4 c, V4 lo, V4 scale, int bins) {
     return k > top ? top : k;
 }
 
-/// A built subtree: a flat array of nodes (root first, second-child offsets relative to it), or
-/// a root whose two subtrees were built as separate tasks.
+/// A built subtree: a flat array of `size` nodes (root first, second-child offsets relative to
+/// it), or a root whose two subtrees were built as separate tasks.
 struct Subtree {
-    std::vector<BvhNode> nodes;
+    const BvhNode* nodes = nullptr;
     BvhNode root{};
     std::unique_ptr<Subtree> left, right;
     size_t size = 0;  // nodes in the subtree
+};
+
+/// Nodes appended one after another to a flat array: a serial subtree's.
+struct FlatNodes {
+    BvhNode* at;
+    uint32_t size = 0;
+    uint32_t push(const BvhNode& n) {
+        at[size] = n;
+        return size++;
+    }
 };
 
 BvhNode make_node(const Box& box) {
@@ -151,13 +167,21 @@ BvhNode make_node(const Box& box) {
 
 class Builder {
   public:
-    Builder(std::vector<Ref>& refs, const BvhOptions& options)
+    Builder(Refs& refs, const BvhOptions& options)
         : refs_(refs),
+          flat_(static_cast<BvhNode*>(
+              allocate_huge(2 * refs.size() * sizeof(BvhNode), alignof(BvhNode)))),
           options_(options),
           bins_(std::clamp(options.bins, 2, kMaxBins)),
           block_(std::max<size_t>(options.leaf_block, 1)),
           serial_below_(tbb::this_task_arena::max_concurrency() > 1 ? kSerialBelow
-                                                                    : kSerialBelow1) {}
+                                                                    : kSerialBelow1) {
+        if (refs.size() >= 4 * kChunk) {  // partition_parallel()'s scratch, for every node
+            scratch_.reset(
+                static_cast<Ref*>(allocate_huge(refs.size() * sizeof(Ref), alignof(Ref))));
+            side_.reset(static_cast<uint8_t*>(allocate_huge(refs.size())));
+        }
+    }
 
     /// The bounds of the boxes and of the centroids of refs [begin, end).
     void bounds_of(size_t begin, size_t end, Box& box, Box& cbox) const {
@@ -176,9 +200,10 @@ class Builder {
         auto sub = std::make_unique<Subtree>();
         const auto scratch = std::make_unique<Bins>();
         if (end - begin < serial_below_) {
-            sub->nodes.reserve(2 * (end - begin));
-            build_serial(sub->nodes, begin, end, box, cbox, depth, *scratch);
-            sub->size = sub->nodes.size();
+            FlatNodes flat{flat_.get() + 2 * begin};
+            build_serial(flat, begin, end, box, cbox, depth, *scratch);
+            sub->nodes = flat.at;
+            sub->size = flat.size;
             return sub;
         }
         Box child[4];
@@ -187,7 +212,8 @@ class Builder {
         if (mid == begin) {  // a leaf: a flat subtree of one node
             sub->root.offset = static_cast<uint32_t>(begin);
             sub->root.count = static_cast<uint32_t>(end - begin);
-            sub->nodes = {sub->root};
+            flat_[2 * begin] = sub->root;
+            sub->nodes = flat_.get() + 2 * begin;
             sub->size = 1;
             return sub;
         }
@@ -201,7 +227,7 @@ class Builder {
     /// Writes subtree s at out[base …] with absolute node indices.
     static void flatten(const Subtree& s, BvhNode* out, uint32_t base) {
         if (!s.left) {
-            for (size_t i = 0; i < s.nodes.size(); ++i) {
+            for (size_t i = 0; i < s.size; ++i) {
                 BvhNode n = s.nodes[i];
                 if (!n.leaf()) n.offset += base;
                 out[base + i] = n;
@@ -225,23 +251,22 @@ class Builder {
 
     /// Builds the subtree of refs [begin, end) into `nodes` (depth first, offsets relative to
     /// the first node of `nodes`); returns its root's index.
-    uint32_t build_serial(std::vector<BvhNode>& nodes, size_t begin, size_t end, const Box& box,
+    uint32_t build_serial(FlatNodes& nodes, size_t begin, size_t end, const Box& box,
                           const Box& cbox, int depth, Bins& scratch) {
-        const uint32_t index = static_cast<uint32_t>(nodes.size());
-        nodes.push_back(make_node(box));
+        const uint32_t index = nodes.push(make_node(box));
         Box child[4];  // box and cbox of the first and the second child
         const size_t mid =
             end - begin > 1 ? split(begin, end, depth, box, cbox, child, scratch) : begin;
         if (mid == begin) {
-            nodes[index].offset = static_cast<uint32_t>(begin);
-            nodes[index].count = static_cast<uint32_t>(end - begin);
+            nodes.at[index].offset = static_cast<uint32_t>(begin);
+            nodes.at[index].count = static_cast<uint32_t>(end - begin);
             return index;
         }
         build_serial(nodes, begin, mid, child[0], child[1], depth + 1, scratch);  // the next node
         const uint32_t second =
             build_serial(nodes, mid, end, child[2], child[3], depth + 1, scratch);
-        nodes[index].offset = second;
-        nodes[index].count = 0;
+        nodes.at[index].offset = second;
+        nodes.at[index].count = 0;
         return index;
     }
 
@@ -387,7 +412,7 @@ class Builder {
         const size_t count = end - begin, chunks = (count + kChunk - 1) / kChunk;
         std::vector<size_t> n_left(chunks);
         std::vector<Box> c_left(chunks), c_right(chunks);
-        std::unique_ptr<uint8_t[]> side(new uint8_t[count]);
+        uint8_t* const side = side_.get() + begin;
         tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
             size_t n = 0;
             for (size_t i = begin + c * kChunk, e = std::min(end, i + kChunk); i < e; ++i) {
@@ -410,7 +435,7 @@ class Builder {
             at_right[c] = r;
             r += std::min(kChunk, count - c * kChunk) - n_left[c];
         }
-        std::unique_ptr<Ref[]> scratch(new Ref[count]);
+        Ref* const scratch = scratch_.get() + begin;
         tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
             size_t l = at_left[c], rr = at_right[c];
             for (size_t i = begin + c * kChunk, e = std::min(end, i + kChunk); i < e; ++i)
@@ -418,7 +443,7 @@ class Builder {
         });
         tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
             const size_t i = c * kChunk, e = std::min(count, i + kChunk);
-            std::copy(scratch.get() + i, scratch.get() + e, refs_.begin() + begin + i);
+            std::copy(scratch + i, scratch + e, refs_.begin() + begin + i);
         });
         child[1] = child[3] = Box{};
         for (size_t c = 0; c < chunks; ++c) {
@@ -523,7 +548,19 @@ class Builder {
     /// n primitives as the SAH counts them: the blocks of options_.leaf_block they fill.
     float blocks(size_t n) const { return static_cast<float>((n + block_ - 1) / block_); }
 
-    std::vector<Ref>& refs_;
+    struct Free {
+        void operator()(void* p) const { std::free(p); }
+    };
+
+    Refs& refs_;
+    // partition_parallel()'s scratch: refs [begin, end) go through scratch_[begin, end) and
+    // their sides through side_[begin, end), so that concurrent partitions of disjoint ranges
+    // share one allocation, made once per build instead of once per large node.
+    std::unique_ptr<Ref[], Free> scratch_;
+    std::unique_ptr<uint8_t[], Free> side_;
+    // The serial subtrees' nodes: the subtree of refs [begin, end) has at most 2·(end − begin)
+    // nodes, written at flat_[2·begin …], so that subtrees built side by side never overlap.
+    std::unique_ptr<BvhNode[], Free> flat_;
     const BvhOptions& options_;
     int bins_;
     size_t block_;
@@ -534,7 +571,7 @@ class Builder {
 
 Bvh Bvh::build(std::span<const Bounds3> bounds, const BvhOptions& options) {
     Bvh bvh;
-    std::vector<Ref> refs;
+    Refs refs;
     refs.reserve(bounds.size());
     for (size_t i = 0; i < bounds.size(); ++i) {
         const Bounds3& b = bounds[i];

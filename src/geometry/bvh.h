@@ -24,6 +24,7 @@
 #endif
 
 #include "math/bounds.h"
+#include "math/huge_pages.h"
 #include "math/ray.h"
 
 namespace luz {
@@ -59,9 +60,9 @@ class Bvh {
     static Bvh build(std::span<const Bounds3> bounds, const BvhOptions& options = {});
 
     bool empty() const { return nodes_.empty(); }
-    const std::vector<BvhNode>& nodes() const { return nodes_; }
+    const HugeVector<BvhNode>& nodes() const { return nodes_; }
     /// Primitive ids in leaf order: a leaf holds order()[offset … offset + count − 1].
-    const std::vector<uint32_t>& order() const { return order_; }
+    const HugeVector<uint32_t>& order() const { return order_; }
     /// Bytes held by the nodes and the order.
     size_t memory_bytes() const {
         return nodes_.capacity() * sizeof(BvhNode) + order_.capacity() * sizeof(uint32_t);
@@ -85,9 +86,9 @@ class Bvh {
 
   private:
     template <int W>
-    friend class WideBvh;  // takes the order when collapsing (wide_bvh.h)
-    std::vector<BvhNode> nodes_;
-    std::vector<uint32_t> order_;
+    friend class WideBvh;        // takes the order when collapsing (wide_bvh.h)
+    HugeVector<BvhNode> nodes_;  // on huge pages when large (math/huge_pages.h)
+    HugeVector<uint32_t> order_;
 };
 
 namespace bvh_detail {

@@ -52,8 +52,8 @@ BuiltScene build_scene(const SceneDesc& desc) {
 void build_bvh(BuiltScene& scene) {
     const auto start = std::chrono::steady_clock::now();
     // The primitives: every bounded shape, except that a mesh gives its triangles instead.
-    std::vector<BvhPrim> prims;
-    std::vector<Bounds3> boxes;
+    HugeVector<BvhPrim> prims;  // on huge pages when large: fewer page faults
+    HugeVector<Bounds3> boxes;
     prims.reserve(scene.shapes.size() + scene.mesh_triangles);
     boxes.reserve(prims.capacity());
     scene.unbounded.clear();
@@ -86,7 +86,7 @@ void build_bvh(BuiltScene& scene) {
     scene.bvh = Bvh8::build(boxes, options);
     // Primitives in blocks, leaf by leaf in node order (those with empty bounds, never hit,
     // are left out); the order itself is not kept.
-    const std::vector<uint32_t> order = scene.bvh.take_order();
+    const HugeVector<uint32_t> order = scene.bvh.take_order();
     constexpr uint32_t L = PrimBlock::kLanes;
     auto& blocks = scene.bvh_blocks;
     blocks.clear();

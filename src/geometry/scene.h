@@ -38,7 +38,7 @@ struct BuiltScene {
     Bvh8 bvh;
     /// The BVH's primitives: slot s is lane s % 4 of block s / 4; each leaf starts a block
     /// (the lanes after its end are padding). On huge pages when large (huge_pages.h).
-    std::vector<PrimBlock, HugePageAllocator<PrimBlock>> bvh_blocks;
+    HugeVector<PrimBlock> bvh_blocks;
     std::vector<uint32_t> unbounded;  ///< shapes outside the BVH (planes), in scene order
     bool has_bvh = false;  ///< build_bvh() ran: with render.accel bvh, queries use the BVH or
                            ///< (`direct`) test the few shapes in order

@@ -23,7 +23,7 @@ float half_area(const BvhNode& n) {
 template <int W>
 class Collapser {
   public:
-    explicit Collapser(const std::vector<BvhNode>& binary)
+    explicit Collapser(const HugeVector<BvhNode>& binary)
         : binary_(binary),
           size_(binary.size(), 0),
           decision_(new uint32_t[binary.size()]),
@@ -183,7 +183,7 @@ class Collapser {
         }
     }
 
-    const std::vector<BvhNode>& binary_;
+    const HugeVector<BvhNode>& binary_;
     std::vector<uint32_t> size_;  // per binary node that roots a wide node: its subtree's size
     std::unique_ptr<uint32_t[]> decision_;  // per binary node: split and opened (decision())
     int parallel_depth_;                    // wide levels whose subtrees are separate tasks

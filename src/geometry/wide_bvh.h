@@ -41,7 +41,7 @@ class WideBvh {
   public:
     using Node = WideBvhNode<W>;
     /// The nodes, on huge pages when large (math/huge_pages.h).
-    using Nodes = std::vector<Node, HugePageAllocator<Node>>;
+    using Nodes = HugeVector<Node>;
 
     WideBvh() = default;
     /// Collapses a binary BVH (taking its leaf order): each wide node gathers up to W
@@ -58,11 +58,11 @@ class WideBvh {
     bool empty() const { return nodes_.empty(); }
     const Nodes& nodes() const { return nodes_; }
     /// Primitive ids in leaf order, as Bvh::order().
-    const std::vector<uint32_t>& order() const { return order_; }
+    const HugeVector<uint32_t>& order() const { return order_; }
     /// Moves the leaf order out, for an owner that keeps its primitives in leaf order (slot i
     /// is its i-th primitive): order() is empty afterwards; the traversals still work.
-    std::vector<uint32_t> take_order() {
-        std::vector<uint32_t> order;
+    HugeVector<uint32_t> take_order() {
+        HugeVector<uint32_t> order;
         order.swap(order_);
         return order;
     }
@@ -115,7 +115,7 @@ class WideBvh {
   private:
     static constexpr int kStack = (W - 1) * Bvh::kMaxDepth + 4;  // ≤ W − 1 pushes per level
     Nodes nodes_;
-    std::vector<uint32_t> order_;
+    HugeVector<uint32_t> order_;
     float reach_ = std::numeric_limits<float>::infinity();  // max |coordinate| of the boxes
 };
 

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <new>
+#include <vector>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -55,5 +56,9 @@ struct HugePageAllocator {
         return true;
     }
 };
+
+/// A std::vector on huge pages when large.
+template <class T>
+using HugeVector = std::vector<T, HugePageAllocator<T>>;
 
 }  // namespace luz

@@ -55,7 +55,7 @@ TEST(BvhBuild, SameTreeForAnyThreadCount) {
 TEST(BvhBuild, LargeTreeIsValid) {
     const std::vector<Bounds3> boxes = clustered_boxes(200000);
     const Bvh bvh = build_with_threads(2, boxes);
-    const std::vector<BvhNode>& nodes = bvh.nodes();
+    const HugeVector<BvhNode>& nodes = bvh.nodes();
     ASSERT_FALSE(nodes.empty());
     EXPECT_LE(nodes.size(), 2 * boxes.size() - 1);
     std::vector<int> seen(boxes.size(), 0);

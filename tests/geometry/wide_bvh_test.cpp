@@ -219,7 +219,7 @@ double wide_sah(const B& bvh, std::set<std::pair<uint32_t, uint32_t>>& leaves) {
 
 /// The SAH of the greedy collapse of binary node b's subtree (each wide node opens its
 /// largest interior child until it has W), counting its nodes in `nodes`.
-double greedy_sah(const std::vector<BvhNode>& bin, uint32_t b, int W, size_t& nodes) {
+double greedy_sah(const HugeVector<BvhNode>& bin, uint32_t b, int W, size_t& nodes) {
     ++nodes;
     double sah = half_area(bin[b].lo, bin[b].hi);
     if (bin[b].leaf()) return sah;
