@@ -169,17 +169,15 @@ class Builder {
   public:
     Builder(Refs& refs, const BvhOptions& options)
         : refs_(refs),
-          flat_(static_cast<BvhNode*>(
-              allocate_huge(2 * refs.size() * sizeof(BvhNode), alignof(BvhNode)))),
+          flat_(make_huge_array<BvhNode>(2 * refs.size())),
           options_(options),
           bins_(std::clamp(options.bins, 2, kMaxBins)),
           block_(std::max<size_t>(options.leaf_block, 1)),
           serial_below_(tbb::this_task_arena::max_concurrency() > 1 ? kSerialBelow
                                                                     : kSerialBelow1) {
         if (refs.size() >= 4 * kChunk) {  // partition_parallel()'s scratch, for every node
-            scratch_.reset(
-                static_cast<Ref*>(allocate_huge(refs.size() * sizeof(Ref), alignof(Ref))));
-            side_.reset(static_cast<uint8_t*>(allocate_huge(refs.size())));
+            scratch_ = make_huge_array<Ref>(refs.size());
+            side_ = make_huge_array<uint8_t>(refs.size());
         }
     }
 
@@ -548,19 +546,15 @@ class Builder {
     /// n primitives as the SAH counts them: the blocks of options_.leaf_block they fill.
     float blocks(size_t n) const { return static_cast<float>((n + block_ - 1) / block_); }
 
-    struct Free {
-        void operator()(void* p) const { std::free(p); }
-    };
-
     Refs& refs_;
     // partition_parallel()'s scratch: refs [begin, end) go through scratch_[begin, end) and
     // their sides through side_[begin, end), so that concurrent partitions of disjoint ranges
     // share one allocation, made once per build instead of once per large node.
-    std::unique_ptr<Ref[], Free> scratch_;
-    std::unique_ptr<uint8_t[], Free> side_;
+    HugeArray<Ref> scratch_;
+    HugeArray<uint8_t> side_;
     // The serial subtrees' nodes: the subtree of refs [begin, end) has at most 2·(end − begin)
     // nodes, written at flat_[2·begin …], so that subtrees built side by side never overlap.
-    std::unique_ptr<BvhNode[], Free> flat_;
+    HugeArray<BvhNode> flat_;
     const BvhOptions& options_;
     int bins_;
     size_t block_;

@@ -26,7 +26,7 @@ class Collapser {
     explicit Collapser(const HugeVector<BvhNode>& binary)
         : binary_(binary),
           size_(binary.size(), 0),
-          decision_(new uint32_t[binary.size()]),
+          decision_(make_huge_array<uint32_t>(binary.size())),
           parallel_depth_(binary.size() < kParallelFrom ? 0 : kParallelDepth),
           solve_parallel_depth_(binary.size() < kSolveParallelFrom ? 0 : kSolveParallelDepth) {
         static_assert(W <= 8, "decision_ holds 4 bits for each slot count 2 … W");
@@ -184,10 +184,10 @@ class Collapser {
     }
 
     const HugeVector<BvhNode>& binary_;
-    std::vector<uint32_t> size_;  // per binary node that roots a wide node: its subtree's size
-    std::unique_ptr<uint32_t[]> decision_;  // per binary node: split and opened (decision())
-    int parallel_depth_;                    // wide levels whose subtrees are separate tasks
-    int solve_parallel_depth_;  // binary levels whose subtrees are separate solve() tasks
+    HugeVector<uint32_t> size_;     // per binary node that roots a wide node: its subtree's size
+    HugeArray<uint32_t> decision_;  // per binary node: split and opened (decision())
+    int parallel_depth_;            // wide levels whose subtrees are separate tasks
+    int solve_parallel_depth_;      // binary levels whose subtrees are separate solve() tasks
 };
 
 }  // namespace

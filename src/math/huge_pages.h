@@ -11,7 +11,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <memory>
 #include <new>
+#include <type_traits>
 #include <vector>
 
 #if defined(__linux__)
@@ -60,5 +62,21 @@ struct HugePageAllocator {
 /// A std::vector on huge pages when large.
 template <class T>
 using HugeVector = std::vector<T, HugePageAllocator<T>>;
+
+struct FreeHuge {
+    void operator()(void* p) const noexcept { std::free(p); }
+};
+/// An array of trivial T left uninitialized (scratch filled before it is read), on huge pages
+/// when large: make_huge_array<T>(n).
+template <class T>
+using HugeArray = std::unique_ptr<T[], FreeHuge>;
+
+template <class T>
+HugeArray<T> make_huge_array(size_t n) {
+    static_assert(std::is_trivially_default_constructible_v<T> &&
+                  std::is_trivially_destructible_v<T>);
+    if (n > static_cast<size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
+    return HugeArray<T>(static_cast<T*>(allocate_huge(n * sizeof(T), alignof(T))));
+}
 
 }  // namespace luz

@@ -93,5 +93,23 @@ TEST(BvhBuild, LargeTreeIsValid) {
     EXPECT_LT(depth, Bvh::kMaxDepth);
 }
 
+// A node too large for one task whose centroids all coincide becomes a leaf there (not in the
+// serial builder): one node holding every primitive, whatever the thread count.
+TEST(BvhBuild, LargeNodeOfCoincidentCentroidsIsOneLeaf) {
+    const std::vector<Bounds3> boxes(5000, Bounds3{{1, 2, 3}, {2, 3, 4}});
+    for (int threads : {1, 2, 4}) {
+        const Bvh bvh = build_with_threads(threads, boxes);
+        ASSERT_EQ(bvh.nodes().size(), 1u) << threads;
+        const BvhNode& leaf = bvh.nodes()[0];
+        EXPECT_EQ(leaf.offset, 0u);
+        EXPECT_EQ(leaf.count, 5000u);
+        EXPECT_EQ(leaf.lo[0], 1.0f);
+        EXPECT_EQ(leaf.hi[2], 4.0f);
+        std::vector<int> seen(boxes.size(), 0);
+        for (uint32_t id : bvh.order()) ++seen.at(id);
+        for (size_t id = 0; id < boxes.size(); ++id) ASSERT_EQ(seen[id], 1) << id;
+    }
+}
+
 }  // namespace
 }  // namespace luz
