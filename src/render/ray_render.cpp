@@ -1,12 +1,15 @@
-// The raycast and raytrace pipelines: one RayTracer shared by all threads, asked for the colour
-// at each sample point by the antialiasing sampler (render/sampler.h), which renders the image
-// in tiles in parallel; counters per tile summed in tile order.
+// The raycast and raytrace pipelines: one engine shared by all threads, asked for the colour at
+// each sample point by the antialiasing sampler (render/sampler.h), which renders the image in
+// tiles in parallel; counters per tile summed in tile order. The reference (Whitted) observed
+// by a TermRecorder gives the per-term images; otherwise the batch engine gives the colour.
+#include "render/ray_render.h"
+
 #include <algorithm>
 #include <atomic>
 #include <string>
 #include <type_traits>
 
-#include "render/ray_tracer.h"
+#include "render/batch_tracer.h"
 #include "render/sampler.h"
 
 namespace luz {
@@ -20,8 +23,9 @@ Image& image_of(ImageRows& out) { return out.rows; }  // not called: ImageRows t
 template <class Out>
 void render_into(const BuiltScene& scene, const Settings& settings, const RenderControl& control,
                  Out& out, RenderStats& stats) {
-    const RayTracer tracer(scene, settings, settings.render.pipeline == Pipeline::raytrace,
-                           control.cancel);
+    const Whitted tracer(scene, settings, settings.render.pipeline == Pipeline::raytrace,
+                         control.cancel);
+    const BatchTracer batch(tracer);
     const int w = settings.image.width, h = settings.image.height;
     // An exploding ray tree (2^depth rays a sample on reflective and transparent surfaces):
     // said once, when a sample traces more than kExplodingTreeRays rays and min_weight is 0.
@@ -55,28 +59,41 @@ void render_into(const BuiltScene& scene, const Settings& settings, const Render
             },
             term_out, counters, control.aa_mask);
     } else {
-        // The colour, one sample at a time or neighbouring samples together (their camera rays
-        // traced as a packet): the same bits either way.
+        // The colour, by one engine for the whole render: the batch engine, or the reference
+        // where the sampler asks for one point at a time (adaptive antialiasing). The same bits
+        // either way.
         struct Colour {
-            const RayTracer& tracer;
+            const Whitted& tracer;
+            const BatchTracer* batch_tracer;  ///< null: the reference for every sample
             const decltype(watch_rays)& watch;
             Rgb operator()(float x, float y, TraceCounters& c) const {
+                if (batch_tracer) {
+                    Rgb s;
+                    batch(&x, &y, 1, c, &s);
+                    return s;
+                }
                 const uint64_t before = work_of(c);
                 const Rgb s = tracer.sample(x, y, c);
                 watch(work_of(c) - before);
                 return s;
             }
             void batch(const float* xs, const float* ys, int n, TraceCounters& c, Rgb* o) const {
+                if (!batch_tracer) {
+                    for (int k = 0; k < n; ++k) o[k] = (*this)(xs[k], ys[k], c);
+                    return;
+                }
                 uint64_t rays[64];
                 for (int first = 0; first < n; first += 64) {
                     const int m = std::min(64, n - first);
-                    tracer.samples(xs + first, ys + first, m, c, o + first, rays);
+                    batch_tracer->samples(xs + first, ys + first, m, c, o + first, rays);
                     for (int k = 0; k < m; ++k) watch(rays[k]);
                 }
             }
         };
-        counts = sample_image(settings.render.antialias, w, h, control, Colour{tracer, watch_rays},
-                              out, counters, control.aa_mask);
+        const bool one_at_a_time = settings.render.antialias.mode == AaMode::adaptive;
+        const Colour colour{tracer, one_at_a_time ? nullptr : &batch, watch_rays};
+        counts = sample_image(settings.render.antialias, w, h, control, colour, out, counters,
+                              control.aa_mask);
     }
     for (const TraceCounters& c : counters) {
         stats.rays_primary += c.primary;

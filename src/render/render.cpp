@@ -5,7 +5,7 @@
 #include <chrono>
 
 #include "render/parallel.h"
-#include "render/ray_tracer.h"
+#include "render/ray_render.h"
 #include "render/zbuffer.h"
 
 namespace luz {

@@ -47,7 +47,7 @@ struct SamplerCounts {
 inline constexpr int kSamplerTile = 16;
 /// Samples of a tile taken together (sample_points()) when a tile has no antialiasing, in row
 /// order (four rows of a whole tile): the batch whose ray trees the ray tracer traces side by
-/// side (RayTracer::samples()). Progress moves by these runs.
+/// side (BatchTracer::samples()). Progress moves by these runs.
 inline constexpr int kSamplerRun = 64;
 /// The work (work_of(): rays, for the ray tracer) a pixel's samples take on average above which
 /// the pixels after them are taken one at a time, so that progress moves pixel by pixel even
@@ -56,13 +56,13 @@ inline constexpr int kSamplerRun = 64;
 inline constexpr uint64_t kHeavyPixelWork = 4096;
 
 /// The work a work item's counters have counted so far (rays, for the ray tracer's counters:
-/// ray_tracer.h overloads it); progress is reported sooner after costly pixels.
+/// render/whitted.h overloads it); progress is reported sooner after costly pixels.
 template <class Counters>
 uint64_t work_of(const Counters&) {
     return 0;
 }
 
-/// The primary rays a work item's counters have counted (ray_tracer.h overloads it): how a
+/// The primary rays a work item's counters have counted (render/whitted.h overloads it): how a
 /// render shared among processes reports each one's share (SPEC §3.1).
 template <class Counters>
 uint64_t primary_rays_of(const Counters&) {

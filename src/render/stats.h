@@ -18,8 +18,8 @@ struct RenderStats {
     double bvh_build_seconds = 0;  ///< building the BVH (part of the scene build)
     uint64_t bvh_bytes = 0;        ///< nodes and primitives (in leaf order)
     /// The share of ray-tracing time spent in intersection, measured on a sample: timers around
-    /// every nearest_hit() and transmittance() call of every 256th primary sample (ray_tracer.h),
-    /// and around those whole samples. Share = intersect_sampled_seconds / sampled_seconds.
+    /// the scene queries of 1 primary sample in 256 (the reference, render/whitted.h) or of the
+    /// batches holding one (render/batch_tracer.h), and around those whole samples or batches. Share = intersect_sampled_seconds / sampled_seconds.
     double intersect_sampled_seconds = 0, sampled_seconds = 0;
     uint64_t peak_memory_bytes = 0;
     /// --region X0,Y0,X1,Y1 (SPEC §3): the rectangle rendered; all 0 for the whole image.

@@ -1,8 +1,6 @@
 // The ray tracer against SPEC §1.1: Snell's law, total internal reflection, shadows through
 // opaque and glass objects, two-sided planes, light spheres, tree attenuation, determinism,
 // and raycast ≡ zbuffer.
-#include "render/ray_tracer.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +12,7 @@
 #include <vector>
 
 #include "image/compare.h"
+#include "render/batch_tracer.h"
 #include "render/render.h"
 #include "scene/scene_loader.h"
 
@@ -87,7 +86,7 @@ ObjectDesc sphere(Vec3 c, float r, int material) {
 
 Rgb trace_down(const BuiltScene& scene, const Settings& settings, Vec3 from,
                TraceCounters* counters_out = nullptr) {
-    const RayTracer tracer(scene, settings, true);
+    const Whitted tracer(scene, settings, true);
     TraceCounters counters;
     float d;
     const Rgb c = tracer.trace(Ray{from, {0, -1, 0}}, 0, counters, d);
@@ -131,7 +130,7 @@ TEST(Planes, LitFromBelowAndSeenFromBelow) {
     d.lights.push_back({Vec3{0, -4, 0}, Rgb{1.0f}, 0});
     d.objects = {floor_plane()};
     const BuiltScene scene = build_scene(d);
-    const RayTracer tracer(scene, d, true);
+    const Whitted tracer(scene, d, true);
     TraceCounters c;
     float dist;
     // Seen from below, lit from below: the normal flips towards the viewer.
@@ -153,7 +152,7 @@ TEST(LightSpheres, SeenDirectlyAndInAMirrorNeverCastingShadows) {
     d.lights.push_back({Vec3{0, 3, 0}, Rgb{2.0f, 0.5f, 0.25f}, 0.5f});
     d.objects = {floor_plane(1)};
     const BuiltScene scene = build_scene(d);
-    const RayTracer tracer(scene, d, true);
+    const Whitted tracer(scene, d, true);
     TraceCounters c;
     float dist;
     // Directly: the light's intensity clamped to [0, 1].
@@ -216,7 +215,7 @@ TEST(RayTree, SchlickLeavesTheMirrorCoefficientAlone) {
     d.lights.push_back({Vec3{0, 10, 0}, Rgb{1.0f}, 0});
     d.objects = {floor_plane(1)};
     const BuiltScene scene = build_scene(d);
-    const RayTracer tracer(scene, d, true);
+    const Whitted tracer(scene, d, true);
     TraceCounters c;
     float dist;
     const Rgb seen = tracer.trace(Ray{{0, 1, 1}, normalize(Vec3{0, -1, -1})}, 0, c, dist);
@@ -236,7 +235,7 @@ TEST(RayTree, TreeAttenuationDividesBySegmentLengthPlusK) {
     d.lights.push_back({Vec3{0.25f, 0.5f, 0}, Rgb{0.8f}, 0.1f});  // a light sphere to look at
     d.objects = {floor_plane(1)};
     const BuiltScene scene = build_scene(d);
-    const RayTracer tracer(scene, d, true);
+    const Whitted tracer(scene, d, true);
     TraceCounters c;
     float dist;
     // From (1, 1, 0) to the mirror at (0.5, 0, 0); the reflected ray (−0.5, 1, 0) passes
@@ -315,15 +314,15 @@ TEST(Pipelines, RaytraceGivesTheSameBitsForAnyThreadCount) {
     EXPECT_GT(s1.rays_refraction, 0u);
 }
 
-// samples() traces neighbouring camera rays as one packet and, in raycast, shades their hits
+// BatchTracer::samples() traces neighbouring camera rays as one packet and shades their hits
 // side by side (shade_lanes()); in raytrace their ray trees go level by level, the rays of one
-// depth side by side (trace_trees()). sample() goes one ray at a time with shade() and
-// trace_impl()'s recursion. Both give every pixel the same bits and count the same rays (in
+// depth side by side (trace_trees()). Whitted::sample() goes one ray at a time with shade() and
+// trace()'s recursion. Both give every pixel the same bits and count the same rays (in
 // all and sample by sample) and primitive tests, on scenes with checkers, Schlick's metals,
-// glass, a mesh and a packet's worth of misses; with the tree's attenuation and min_weight;
-// and with trees larger than a batch keeps (kHall: a closed box of half-mirror, half-clear
-// panes, some 230 secondary rays a pixel at max_depth 11, more than kMaxTreeRays in a run of
-// 61 samples: the rest go depth-first); in runs of 61 samples and in one call for them all.
+// glass, a mesh, light spheres and a packet's worth of misses; with the tree's attenuation and
+// min_weight; and with trees larger than a batch keeps (kHall: a closed box of half-mirror,
+// half-clear panes, some 230 secondary rays a pixel at max_depth 11, more than kMaxTreeRays in a
+// run of 61 samples: the rest go depth-first); in runs of 61 samples and in one call for them all.
 constexpr std::string_view kHall = R"json({
   "image": { "width": 16, "height": 12, "background": [0.2, 0.3, 0.4] },
   "camera": { "projection": "perspective", "position": [0.1, 0.2, 0.3],
@@ -359,6 +358,8 @@ TEST(Pipelines, PacketsGiveTheBitsAndCountsOfOneRayAtATime) {
         {"demo:whitted", {{"render.tree_attenuation", "true"}, {"render.min_weight", "0.05"}}},
         {"demo:materials", {{"render.tree_attenuation", "true"}, {"render.min_weight", "0.2"}}},
         {nullptr, {}},
+        {nullptr, {{"lights.0.radius", "0.1"}}},  // a light sphere seen in the mirrors
+        {"demo:whitted", {{"lights.0.radius", "0.5"}}},
     };
     for (const Case& test : cases) {
         for (const Pipeline pipeline : {Pipeline::raycast, Pipeline::raytrace}) {
@@ -369,7 +370,8 @@ TEST(Pipelines, PacketsGiveTheBitsAndCountsOfOneRayAtATime) {
                                     : parse_scene(kHall, "hall.json", ".", overrides);
             d.render.pipeline = pipeline;
             const BuiltScene scene = build_scene(d);
-            const RayTracer tracer(scene, d, pipeline == Pipeline::raytrace);
+            const Whitted tracer(scene, d, pipeline == Pipeline::raytrace);
+            const BatchTracer batch(tracer);
             TraceCounters one, packets;
             std::vector<float> xs, ys;
             for (int y = 0; y < d.image.height; ++y) {
@@ -389,8 +391,8 @@ TEST(Pipelines, PacketsGiveTheBitsAndCountsOfOneRayAtATime) {
                 secondary_one[k] = one.reflection + one.refraction - secondary;
             }
             for (int first = 0; first < n; first += 61)  // uneven runs: partial packets too
-                tracer.samples(&xs[first], &ys[first], std::min(61, n - first), packets, &b[first],
-                               &rays_packets[first]);
+                batch.samples(&xs[first], &ys[first], std::min(61, n - first), packets, &b[first],
+                              &rays_packets[first]);
             if (!test.demo && pipeline == Pipeline::raytrace) {
                 uint64_t most = 0;  // the most secondary rays of a run of 61 samples
                 for (int first = 0; first < n; first += 61) {
@@ -403,7 +405,7 @@ TEST(Pipelines, PacketsGiveTheBitsAndCountsOfOneRayAtATime) {
             // All the samples in one call: several batches of 64.
             std::vector<Rgb> whole(xs.size());
             TraceCounters once;
-            tracer.samples(xs.data(), ys.data(), n, once, whole.data());
+            batch.samples(xs.data(), ys.data(), n, once, whole.data());
             EXPECT_EQ(std::memcmp(whole.data(), b.data(), whole.size() * sizeof(Rgb)), 0);
             EXPECT_EQ(work_of(once), work_of(one));
             const std::string what = std::string(test.demo ? test.demo : "hall") + " pipeline " +

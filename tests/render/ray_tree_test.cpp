@@ -1,5 +1,5 @@
-// The ray tree recorded by RayTracer::trace: the same colour as the render, and terms that add
-// up exactly as trace() and shade() added them.
+// The ray tree recorded by Whitted::trace observed by a RayTreeRecorder: the same colour as the
+// render, and terms that add up exactly as trace() and shade() added them.
 #include "render/ray_tree.h"
 
 #include <gtest/gtest.h>
