@@ -1,5 +1,6 @@
 # Frame.save goes through the CLI's output code: a symlink is written through, a file keeps its
-# mode, a FIFO gets the bytes as a stream and stays a FIFO, a folder is refused untouched.
+# mode, a FIFO gets the bytes as a stream and stays a FIFO, a folder is refused untouched (as it
+# was before).
 import os
 import stat
 import threading
@@ -24,7 +25,8 @@ def test_save_streams_to_a_fifo(luz, tmp_path):
     fifo = tmp_path / "out.ppm"
     os.mkfifo(fifo)
     got = []
-    reader = threading.Thread(target=lambda: got.append(open(fifo, "rb").read()))
+    # a daemon: a save that replaced the FIFO would leave it waiting for ever
+    reader = threading.Thread(target=lambda: got.append(open(fifo, "rb").read()), daemon=True)
     reader.start()
     frame.save(fifo)
     reader.join(timeout=10)
