@@ -10,14 +10,27 @@
 namespace luz {
 
 void check_writable_target(const std::string& path, const char* origin) {
-    const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-    std::error_code ec;
-    if (!dir.empty() && !std::filesystem::is_directory(dir, ec)) {
-        throw SceneError(path + ": " + origin + ": folder " + dir.string() + " does not exist");
+    const auto missing_folder = [&](const std::string& file) {
+        const std::filesystem::path dir = std::filesystem::path(file).parent_path();
+        std::error_code ec;
+        if (!dir.empty() && !std::filesystem::is_directory(dir, ec)) {
+            throw SceneError(path + ": " + origin + ": folder " + dir.string() + " does not exist");
+        }
+    };
+    missing_folder(path);
+    OutputTarget target;
+    try {
+        target = resolve_output(path);
+    } catch (const FileError& e) {
+        std::error_code ec;
+        if (std::filesystem::is_directory(path, ec))
+            throw SceneError(path + ": " + origin + ": is a folder, not a file");
+        const std::string what = e.what(), prefix = path + ": cannot write: ";
+        throw SceneError(path + ": " + origin + ": cannot write: " +
+                         (what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what));
     }
-    if (std::filesystem::is_directory(path, ec)) {
-        throw SceneError(path + ": " + origin + ": is a folder, not a file");
-    }
+    // a symlink to nothing yet: its target is created, in a folder that must exist
+    if (target.kind == OutputTarget::Kind::file && !target.exists) missing_folder(target.path);
 }
 
 void check_output_path(const std::string& path, const char* origin) {
@@ -111,6 +124,29 @@ Image aov_picture(const Aov& aov) {
     return out;
 }
 
+namespace {
+
+/// The file of the term `name` beside the image file `path` (not .exr): X.NAME.EXT.
+std::string term_path(const std::string& path, const std::string& name) {
+    const std::filesystem::path p(path);
+    return (p.parent_path() / p.stem()).string() + "." + name + p.extension().string();
+}
+
+bool is_exr(const std::string& path) {
+    ImageFormat format{};
+    return format_from_path(path, format) && format == ImageFormat::exr;
+}
+
+}  // namespace
+
+std::vector<std::string> frame_file_paths(const std::string& path,
+                                          const std::vector<AovKind>& aovs) {
+    std::vector<std::string> paths{path};
+    if (!is_exr(path))
+        for (AovKind k : aovs) paths.push_back(term_path(path, aov_name(k)));
+    return paths;
+}
+
 std::vector<std::pair<std::string, std::string>> encode_frame_files(const Frame& frame,
                                                                     const std::string& path,
                                                                     Encoding encoding) {
@@ -124,12 +160,9 @@ std::vector<std::pair<std::string, std::string>> encode_frame_files(const Frame&
         return files;
     }
     files.emplace_back(path, encode_frame(frame, path, encoding));
-    const std::filesystem::path p(path);
-    const std::string stem = (p.parent_path() / p.stem()).string();
-    const std::string ext = p.extension().string();
     const bool eight_bit = format == ImageFormat::png || format == ImageFormat::ppm;
     for (const Aov& a : frame.aovs) {
-        const std::string name = stem + "." + a.name + ext;
+        const std::string name = term_path(path, a.name);
         // The pictures of depth, normal and tests are display values: written as they are.
         const bool picture = eight_bit && (a.scalar() || a.kind == AovKind::normal);
         files.emplace_back(name, picture ? encode_image(name, aov_picture(a), Encoding::linear)
@@ -138,11 +171,15 @@ std::vector<std::pair<std::string, std::string>> encode_frame_files(const Frame&
     return files;
 }
 
-void write_frame_files(const Frame& frame, const std::string& path, Encoding encoding) {
+void write_frame_files(const Frame& frame, const std::string& path, Encoding encoding,
+                       const std::atomic<bool>* cancel) {
     std::vector<std::unique_ptr<PendingFile>> pending;
-    for (auto& [name, bytes] : encode_frame_files(frame, path, encoding))
-        pending.push_back(std::make_unique<PendingFile>(name, bytes));
-    for (auto& f : pending) f->commit();
+    std::vector<PendingFile*> files;
+    for (auto& [name, bytes] : encode_frame_files(frame, path, encoding)) {
+        pending.push_back(std::make_unique<PendingFile>(name, std::move(bytes)));
+        files.push_back(pending.back().get());
+    }
+    commit_together(files, cancel);
 }
 
 std::string frame_stats_json(const Frame& frame, const SceneDesc& desc) {

@@ -11,6 +11,7 @@
 #include "app/cli_options.h"
 #include "app/figures_command.h"
 #include "app/signals.h"
+#include "app/standard_output.h"
 #include "app/view_command.h"
 #include "luz/luz.h"
 
@@ -84,9 +85,8 @@ int run(int argc, char** argv, const FrameRenderer* render_frame) {
                         : luz::run_render(render_options);
 }
 
-}  // namespace
-
-int luz_main(int argc, char** argv, const FrameRenderer* render_frame) {
+/// run() with its failures turned into messages and exit statuses.
+int run_reporting_failures(int argc, char** argv, const FrameRenderer* render_frame) {
     try {
         return run(argc, argv, render_frame);
     } catch (const luz::Interrupted& e) {
@@ -102,6 +102,13 @@ int luz_main(int argc, char** argv, const FrameRenderer* render_frame) {
         print_error_line("luz: unexpected failure");
         return 1;
     }
+}
+
+}  // namespace
+
+int luz_main(int argc, char** argv, const FrameRenderer* render_frame) {
+    catch_sigpipe();
+    return finish_standard_output(run_reporting_failures(argc, argv, render_frame));
 }
 
 }  // namespace luz

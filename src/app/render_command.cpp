@@ -9,29 +9,69 @@
 #include <optional>
 
 #include "app/signals.h"
+#include "app/standard_output.h"
 #include "luz/luz.h"
 
 namespace luz {
 namespace {
 
-/// The files of one rendered frame, written to temporary files: statistics aside, the
-/// refinement mask, the image and its per-term images. commit() renames them into place.
+/// The files of one rendered frame, written to temporary files: the refinement mask, the image,
+/// its per-term images and, with the last frame, the statistics. commit() writes the streams
+/// among them, then renames the others into place: a failure leaves none of them.
 struct FrameFiles {
-    std::optional<PendingFile> mask;
-    std::vector<std::unique_ptr<PendingFile>> images;
+    std::vector<std::unique_ptr<PendingFile>> files;
 
     FrameFiles(const Frame& frame, const std::string& out, const std::string& mask_path,
                Encoding encoding) {
-        if (!mask_path.empty())
-            mask.emplace(mask_path, encode_image(mask_path, frame_aa_mask(frame)));
+        if (!mask_path.empty()) add(mask_path, encode_image(mask_path, frame_aa_mask(frame)));
         for (auto& [path, bytes] : encode_frame_files(frame, out, encoding))
-            images.push_back(std::make_unique<PendingFile>(path, bytes));
+            add(path, std::move(bytes));
     }
+    void add(const std::string& path, std::string&& bytes) {
+        files.push_back(std::make_unique<PendingFile>(path, std::move(bytes)));
+    }
+    /// Throws Interrupted when a signal stops a stream's writing, FileError on failure.
     void commit() {
-        for (auto& f : images) f->commit();
-        if (mask) mask->commit();
+        std::vector<PendingFile*> all;
+        for (auto& f : files) all.push_back(f.get());
+        try {
+            commit_together(all, &interrupt_flag());
+        } catch (const WriteCancelled&) {
+            throw_if_interrupted();
+            throw;
+        }
     }
 };
+
+/// Every file `luz render` writes (each frame's image, terms and mask, the statistics, the
+/// checkpoint) and reads (the scene and `inputs`, the files it named), each with its option.
+/// Before the scene is loaded (`range` null), the frames' files are not known yet: only those
+/// of a render without --frames and with -o are listed.
+std::vector<NamedFile> render_files(const RenderArgs& o, const std::string& out,
+                                    const std::vector<AovKind>& aovs, const FrameRange* range,
+                                    const std::vector<std::string>& inputs) {
+    std::vector<NamedFile> files;
+    const auto add_frame = [&](const std::string& image, const std::string& mask) {
+        const std::vector<std::string> paths = frame_file_paths(image, aovs);
+        files.push_back({paths[0], o.output.empty() ? "the default output" : "-o"});
+        for (size_t k = 1; k < paths.size(); ++k)
+            files.push_back({paths[k], std::string("--aov ") + aov_name(aovs[k - 1])});
+        if (!mask.empty()) files.push_back({mask, "--aa-mask"});
+    };
+    if (range && o.frames) {
+        for (int f = range->first; f < range->end; ++f)
+            add_frame(frame_path(out, f),
+                      o.aa_mask_file.empty() ? "" : frame_path(o.aa_mask_file, f));
+    } else if (!o.frames && !out.empty()) {
+        add_frame(out, o.aa_mask_file);
+    }
+    if (!o.stats_file.empty()) files.push_back({o.stats_file, "--stats"});
+    if (!o.checkpoint.empty()) files.push_back({o.checkpoint, "--checkpoint"});
+    if (o.scene.rfind("demo:", 0) != 0) files.push_back({o.scene, "the scene file", false});
+    for (const std::string& in : inputs)
+        files.push_back({in, "the scene's mesh or MTL file", false});
+    return files;
+}
 
 }  // namespace
 
@@ -54,10 +94,13 @@ int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
     const std::vector<AovKind> aovs =
         o.aovs.empty() ? std::vector<AovKind>{} : parse_aov_list(o.aovs, "--aov " + o.aovs);
     const std::vector<Override> overrides = overrides_of(o);
+    // Two names for one file (an output and another output or the scene): before reading it.
+    check_distinct_files(render_files(o, o.output, aovs, nullptr, {}));
 
     // 2. The scene, with --set and then the options applied; one validation names the key, for
     //    every frame of an animation. A mesh file may take a quarter of the memory limit.
     set_max_text_file_bytes((o.max_memory ? *o.max_memory : default_memory_limit()) / 4);
+    InputFileRecorder inputs;
     const Animation animation = Animation::load(o.scene, overrides);
     const SceneDesc& first = animation.first();
     for (const std::string& w : first.warnings)
@@ -79,10 +122,15 @@ int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
                              e.what());
         }
     }
-    // Each frame's files: X.EXT, or X.0007.EXT with --frames.
+    // Each frame's files: X.EXT, or X.0007.EXT with --frames. Every one of them can be
+    // written (none is a folder) and none is another output or an input.
     const auto file_of = [&](const std::string& path, int f) {
         return o.frames && !path.empty() ? frame_path(path, f) : path;
     };
+    const std::vector<NamedFile> files = render_files(o, out, aovs, &range, inputs.files());
+    for (const NamedFile& file : files)
+        if (file.output) check_writable_target(file.path, file.origin.c_str());
+    check_distinct_files(files);
 
     // 3. Build, then render with a progress bar on a terminal.
     const auto start = std::chrono::steady_clock::now();
@@ -110,7 +158,6 @@ int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
     SceneDesc built_from;
     std::vector<RenderStats> frame_stats;
     std::vector<int> numbers;
-    std::optional<PendingFile> stats_file;
     Frame frame;
     for (int f = range.first; f < range.end; ++f) {
         const SceneDesc desc = f == 0 ? first : animation.frame(f);
@@ -143,27 +190,26 @@ int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
         stats.threads = resolve_threads(o.threads);
         stats.peak_memory_bytes = std::max(stats.peak_memory_bytes, peak_resident_bytes());
 
-        // 4. The files: the image atomically, then the others renamed into place, so that a
-        //    failure leaves none of this frame behind. Finished frames stay.
+        // 4. The files: all to temporary files, then renamed into place together (the
+        //    statistics with the last frame), so that a failure leaves none of this frame
+        //    behind. Finished frames stay.
         FrameFiles files(frame, file_of(out, f), file_of(o.aa_mask_file, f), desc.image.encoding);
         frame_stats.push_back(stats);
         numbers.push_back(f);
         if (f + 1 == range.end && !o.stats_file.empty()) {  // the last frame: all stats known
-            stats_file.emplace(o.stats_file, o.frames
-                                                 ? animation_stats_json(frame_stats, numbers, first)
-                                                 : frame_stats_json(frame, first));
+            files.add(o.stats_file, o.frames ? animation_stats_json(frame_stats, numbers, first)
+                                             : frame_stats_json(frame, first));
         }
         throw_if_interrupted();  // the temporary files go with their destructors
         files.commit();
         if (o.frames && !o.quiet && !bar.enabled()) {
             std::printf("wrote %s\n", file_of(out, f).c_str());
-            std::fflush(stdout);
+            flush_standard_output();  // a reader gone away stops the lines, not the frames
         }
     }
     bar.finish();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (stats_file) stats_file->commit();
     if (checkpoint) checkpoint->remove();  // the outputs are written: nothing left to continue
 
     if (!o.quiet) {

@@ -1,9 +1,10 @@
-// Atomic file writing: a temporary file in the same folder (flushed to disk on request), then
-// renamed into place.
+// Atomic file writing: a temporary file in the same folder as the file a path names (flushed to
+// disk on request), then renamed into place; streams written when committed.
 #include "image/atomic_file.h"
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/uio.h>
 #include <unistd.h>
 
@@ -17,6 +18,8 @@
 #include <random>
 #include <system_error>
 #include <utility>
+
+#include "image/stream_write.h"
 
 namespace luz {
 namespace {
@@ -90,15 +93,37 @@ bool write_all(int fd, std::vector<std::string_view> pieces) {
 }  // namespace
 
 PendingFile::PendingFile(std::string path, const std::string& bytes, Durability durability)
-    : PendingFile(std::move(path), std::vector<std::string_view>{bytes}, durability) {}
+    : path_(std::move(path)), target_(resolve_output(path_)), durability_(durability) {
+    if (is_stream()) {
+        stream_bytes_ = bytes;
+        return;
+    }
+    stage({bytes});
+}
 
-PendingFile::PendingFile(std::string path_in, const std::vector<std::string_view>& pieces,
+PendingFile::PendingFile(std::string path, std::string&& bytes, Durability durability)
+    : path_(std::move(path)), target_(resolve_output(path_)), durability_(durability) {
+    if (is_stream()) {
+        stream_bytes_ = std::move(bytes);
+        return;
+    }
+    stage({bytes});
+}
+
+PendingFile::PendingFile(std::string path, const std::vector<std::string_view>& pieces,
                          Durability durability)
-    : path_(std::move(path_in)), durability_(durability) {
-    const std::string& path = path_;
-    const auto [dir, name] = split_path(path);
-    const auto fail = [&path](int err) {
-        throw FileError(path + ": cannot write: " + error_text(err));
+    : path_(std::move(path)), target_(resolve_output(path_)), durability_(durability) {
+    if (is_stream()) {
+        for (std::string_view piece : pieces) stream_bytes_ += piece;
+        return;
+    }
+    stage(pieces);
+}
+
+void PendingFile::stage(const std::vector<std::string_view>& pieces) {
+    const auto [dir, name] = split_path(target_.path);  // beside the file its symlinks name
+    const auto fail = [this](int err) {
+        throw FileError(path_ + ": cannot write: " + error_text(err));
     };
 
     // Create the temporary file (0666 less the umask, as any new file).
@@ -112,10 +137,21 @@ PendingFile::PendingFile(std::string path_in, const std::vector<std::string_view
         fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd < 0 && (errno != EEXIST || attempt >= 100)) fail(errno);
     }
+    // An existing file keeps its owner where this process may give it, then its mode.
+    if (target_.exists) {
+        struct stat st {};
+        const bool other_owner =
+            ::fstat(fd, &st) == 0 && (st.st_uid != target_.uid || st.st_gid != target_.gid);
+        if (other_owner && ::fchown(fd, target_.uid, target_.gid) != 0) {
+            // not allowed (not root): the new file is this user's, as any file it makes
+        }
+        ::fchmod(fd, target_.mode);
+    }
 
     // Write, flush to disk if asked, close; any error removes the temporary file.
     int err = 0;
-    if (!write_all(fd, pieces) || (durability == Durability::disk && ::fsync(fd) != 0)) err = errno;
+    if (!write_all(fd, pieces) || (durability_ == Durability::disk && ::fsync(fd) != 0))
+        err = errno;
     if (::close(fd) != 0 && err == 0) err = errno;
     if (err != 0) {
         ::unlink(tmp.c_str());
@@ -125,12 +161,17 @@ PendingFile::PendingFile(std::string path_in, const std::vector<std::string_view
 }
 
 PendingFile::~PendingFile() {
-    if (!committed_) ::unlink(tmp_.c_str());
+    if (!committed_ && !tmp_.empty()) ::unlink(tmp_.c_str());
 }
 
-void PendingFile::commit() {
+void PendingFile::commit(const std::atomic<bool>* cancel) {
     if (committed_) return;
-    if (::rename(tmp_.c_str(), path_.c_str()) != 0) {
+    if (is_stream()) {
+        write_stream(target_, path_, stream_bytes_, cancel);
+        committed_ = true;
+        return;
+    }
+    if (::rename(tmp_.c_str(), target_.path.c_str()) != 0) {
         const int err = errno;
         ::unlink(tmp_.c_str());
         committed_ = true;  // nothing left to remove
@@ -139,8 +180,8 @@ void PendingFile::commit() {
     committed_ = true;
     if (durability_ != Durability::disk) return;
     // Best effort: make the rename itself durable.
-    const size_t slash = path_.find_last_of('/');
-    const std::string dir = slash == std::string::npos ? "." : path_.substr(0, slash + 1);
+    const size_t slash = target_.path.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "." : target_.path.substr(0, slash + 1);
     const int dir_fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (dir_fd >= 0) {
         ::fsync(dir_fd);
@@ -148,9 +189,22 @@ void PendingFile::commit() {
     }
 }
 
+void commit_together(const std::vector<PendingFile*>& files, const std::atomic<bool>* cancel) {
+    for (PendingFile* f : files)
+        if (f->is_stream()) f->commit(cancel);
+    for (PendingFile* f : files) f->commit(cancel);
+}
+
 size_t remove_stale_temporaries(const std::string& path) {
     namespace fs = std::filesystem;
-    const auto [dir, name] = split_path(path);
+    OutputTarget target;
+    try {
+        target = resolve_output(path);
+    } catch (const FileError&) {
+        return 0;
+    }
+    if (target.kind != OutputTarget::Kind::file) return 0;
+    const auto [dir, name] = split_path(target.path);
     const std::string prefix = "." + name + ".tmp.";
     size_t removed = 0;
     std::error_code ec;
