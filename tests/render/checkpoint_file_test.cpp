@@ -212,5 +212,41 @@ TEST(CheckpointFile, AFailedWriteWarnsOnceAndTheRenderGoesOn) {
     EXPECT_TRUE(std::filesystem::exists(path));
 }
 
+/// The checkpoint files of tests/corpus/checkpoints (the fuzzer's seeds) and those with which
+/// scripts/fuzz.sh found bugs (tests/corpus/fuzz/checkpoint), read as
+/// fuzz/fuzz_checkpoint_loader.cpp reads them: each reads or throws InputError, with and without
+/// its checksums checked.
+TEST(CheckpointFile, CorpusFilesReadOrThrowInputError) {
+    const std::filesystem::path corpus = std::filesystem::path(LUZ_SOURCE_DIR) / "tests/corpus";
+    int files = 0, read = 0;
+    for (const char* folder : {"checkpoints", "fuzz/checkpoint"}) {
+        if (!std::filesystem::is_directory(corpus / folder)) continue;
+        for (const auto& e : std::filesystem::directory_iterator(corpus / folder)) {
+            const std::string bytes = slurp(e.path().string());
+            uint64_t key = 0;
+            for (size_t k = 0; k < 8 && 16 + k < bytes.size(); ++k)
+                key |= uint64_t(static_cast<unsigned char>(bytes[16 + k])) << (8 * k);
+            ++files;
+            for (const bool verify : {true, false}) {
+                try {
+                    const CheckpointContents c = parse_checkpoint(bytes, key, "fuzz.ckpt", verify);
+                    for (const CheckpointTile& t : c.tiles) {
+                        EXPECT_LT(t.index, c.count) << e.path();
+                        EXPECT_LE(t.offset + t.size, bytes.size()) << e.path();
+                    }
+                    read += verify;
+                } catch (const InputError& x) {
+                    EXPECT_EQ(std::string(x.what()).rfind("fuzz.ckpt: --checkpoint: ", 0), 0u)
+                        << e.path() << ": " << x.what();
+                } catch (const std::exception& x) {
+                    ADD_FAILURE() << e.path() << ": not an InputError: " << x.what();
+                }
+            }
+        }
+    }
+    EXPECT_GE(files, 7);
+    EXPECT_EQ(read, 4) << "the four whole seeds (written by a Python writer of the format) read";
+}
+
 }  // namespace
 }  // namespace luz
