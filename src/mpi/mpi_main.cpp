@@ -3,7 +3,8 @@
 // scene and its files as ever while keeping a copy (a file observer); before its first frame it
 // sends them to every other process (scene_bundle.h); each frame's tiles are then shared
 // (mpi_tile_share.h) and gathered on rank 0, which alone writes files and draws the progress bar.
-// The others load the same scene from what rank 0 sent and follow it frame by frame, silently.
+// The others load the same scene from what rank 0 sent and follow it frame by frame, silently;
+// a process that stops answering ends the run (heartbeat.h).
 #include <mpi.h>
 
 #include <CLI/CLI.hpp>
