@@ -1,15 +1,15 @@
 #!/usr/bin/env bash
-# Fuzzes the scene loader and the OBJ/MTL loader with libFuzzer (clang, ASan + UBSan), both at
-# once, for SECONDS each (default 600). Builds into build/fuzz/, seeds from scenes/, the demo
-# scenes and tests/corpus/; inputs that fail are written to fuzz/findings/<target>/.
-#   bash scripts/fuzz.sh [SECONDS] [scene|obj ...]
+# Fuzzes the scene loader, the OBJ/MTL loader and the --checkpoint reader with libFuzzer (clang,
+# ASan + UBSan), all at once, for SECONDS each (default 600). Builds into build/fuzz/, seeds from
+# scenes/, the demo scenes and tests/corpus/; inputs that fail go to fuzz/findings/<target>/.
+#   bash scripts/fuzz.sh [SECONDS] [scene|obj|checkpoint ...]
 # Each input a fuzzer found a bug with belongs in tests/corpus/ as a regression case.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-600}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(scene obj)
+[ ${#targets[@]} -eq 0 ] && targets=(scene obj checkpoint)
 
 # clang and its libFuzzer runtime (Debian 12: clang, libclang-rt-14-dev), installed if missing
 scripts/setup.sh
@@ -24,23 +24,23 @@ mkdir -p "$out/obj" fuzz/findings
 flags=(-std=c++20 -g -O1 -fno-omit-frame-pointer -fno-math-errno
        -fsanitize=address,undefined -fno-sanitize-recover=undefined -Isrc)
 
-# 1. The scene layer and tinyobjloader, instrumented for coverage (fuzzer-no-link).
+# 1. The scene layer, tinyobjloader and the checkpoint reader, instrumented for coverage (fuzzer-no-link).
 objs=()
-for src in src/scene/*.cpp fuzz/tinyobj_impl.cpp; do
+for src in src/scene/*.cpp fuzz/tinyobj_impl.cpp src/render/checkpoint_file.cpp; do
   o="$out/obj/$(basename "${src%.cpp}").o"
-  if [ ! -f "$o" ] || [ -n "$(find "$src" src/scene src/math -newer "$o" \( -name '*.h' -o -path "$src" \))" ]; then
+  if [ ! -f "$o" ] || [ -n "$(find "$src" src/scene src/math src/render/checkpoint_file.h -newer "$o" \( -name '*.h' -o -path "$src" \))" ]; then
     clang++ "${flags[@]}" -fsanitize=fuzzer-no-link -DLUZ_SCENES_DIR="\"$PWD/scenes\"" -c "$src" -o "$o" &
   fi
   objs+=("$o")
 done
 wait
-for t in scene obj; do
-  clang++ "${flags[@]}" -fsanitize=fuzzer "fuzz/fuzz_${t}_loader.cpp" "${objs[@]}" \
+for t in scene obj checkpoint; do
+  clang++ "${flags[@]}" -fsanitize=fuzzer "fuzz/fuzz_${t}_loader.cpp" "${objs[@]}" -lz \
     -o "$out/fuzz_${t}_loader"
 done
 
 # 2. Seed corpora (fuzz/corpus/<target>/ keeps what the fuzzer learns between runs).
-mkdir -p fuzz/corpus/scene fuzz/corpus/obj
+mkdir -p fuzz/corpus/scene fuzz/corpus/obj fuzz/corpus/checkpoint
 python3 - <<'PY'
 import re, pathlib, hashlib
 src = pathlib.Path("src/scene/demo_scenes.cpp").read_text()
@@ -49,6 +49,7 @@ for i, text in enumerate(re.findall(r'R"json\((.*?)\)json"', src, re.S)):
 PY
 seed_scene=(fuzz/corpus/scene)
 seed_obj=(fuzz/corpus/obj)
+seed_checkpoint=(fuzz/corpus/checkpoint tests/corpus/checkpoints)
 for d in tests/corpus/scenes fuzz/seeds/scene; do [ -d "$d" ] && seed_scene+=("$d"); done
 for d in tests/corpus/obj fuzz/seeds/obj; do [ -d "$d" ] && seed_obj+=("$d"); done
 cp -f scenes/*.json fuzz/corpus/scene/ 2>/dev/null || true
@@ -70,7 +71,8 @@ for t in "${targets[@]}"; do
   case "$t" in
     scene) run scene -dict=fuzz/json.dict "${seed_scene[@]}" & ;;
     obj) run obj -dict=fuzz/obj.dict "${seed_obj[@]}" & ;;
-    *) echo "fuzz.sh: unknown target $t (scene or obj)" >&2; exit 2 ;;
+    checkpoint) run checkpoint "${seed_checkpoint[@]}" & ;;
+    *) echo "fuzz.sh: unknown target $t (scene, obj or checkpoint)" >&2; exit 2 ;;
   esac
 done
 wait

@@ -3,7 +3,8 @@
 // scene and its files as ever while keeping a copy (a file observer); before its first frame it
 // sends them to every other process (scene_bundle.h); each frame's tiles are then shared
 // (mpi_tile_share.h) and gathered on rank 0, which alone writes files and draws the progress bar.
-// The others load the same scene from what rank 0 sent and follow it frame by frame, silently.
+// The others load the same scene from what rank 0 sent and follow it frame by frame, silently;
+// a process that stops answering ends the run (heartbeat.h).
 #include <mpi.h>
 
 #include <CLI/CLI.hpp>
@@ -19,9 +20,11 @@
 #include "app/cli_options.h"
 #include "app/signals.h"
 #include "luz/luz.h"
+#include "mpi/heartbeat.h"
 #include "mpi/mpi_tile_share.h"
 #include "mpi/scene_bundle.h"
 #include "mpi/wire.h"
+#include "render/checkpoint.h"
 
 namespace luz::mpi {
 namespace {
@@ -48,11 +51,35 @@ std::string receive_bundle_bytes() {
     return bytes;
 }
 
+/// The processes' heartbeat (heartbeat.h), or null when LUZ_MPI_TIMEOUT is 0.
+Heartbeat* g_heart = nullptr;
+
+/// Rank 0: render(), stopped when a process is lost (the heartbeat); then what is done is kept
+/// in the --checkpoint and the run ends with the message naming the process.
+Frame render_watched(const Scene& scene, const SceneDesc& desc, RenderOptions options) {
+    if (!g_heart) return render(scene, desc, options);
+    options.control.cancel = g_heart->begin_render(options.control.cancel);
+    Frame frame;
+    try {
+        frame = render(scene, desc, options);
+    } catch (...) {
+        g_heart->end_render();
+        throw;
+    }
+    if (const std::optional<std::string> lost = g_heart->end_render()) {
+        if (options.control.checkpoint) options.control.checkpoint->save();
+        throw std::runtime_error(*lost);
+    }
+    return frame;
+}
+
 /// One frame with its tiles shared among the processes; `passes` numbers the message tags.
 Frame render_shared(const Scene& scene, const SceneDesc& desc, RenderOptions options, int& passes) {
     MpiTileShare share(MPI_COMM_WORLD, passes);
     options.control.share = &share;
-    Frame frame = render(scene, desc, options);
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    Frame frame = rank == 0 ? render_watched(scene, desc, options) : render(scene, desc, options);
     passes += share.passes() + 1;
     int size = 1;
     MPI_Comm_size(MPI_COMM_WORLD, &size);
@@ -179,8 +206,10 @@ int run_other(int argc, char** argv, int rank, int size) {
 }  // namespace luz::mpi
 
 int main(int argc, char** argv) {
+    // Multiple: the heartbeat's thread sends and receives while the others render (their calls
+    // stay serialized among themselves, see mpi_tile_share.cpp).
     int provided = 0;
-    MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided);
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_MULTIPLE, &provided);
     int rank = 0, size = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &size);
@@ -189,8 +218,28 @@ int main(int argc, char** argv) {
         MPI_Finalize();
         return 1;
     }
+    double timeout = 0;
+    try {
+        timeout = luz::mpi::heartbeat_timeout();
+    } catch (const std::invalid_argument& e) {
+        if (rank == 0) luz::print_error_line(std::string("luz: ") + e.what());
+        MPI_Finalize();
+        return 2;
+    }
+    if (provided < MPI_THREAD_MULTIPLE && timeout > 0) {
+        if (rank == 0) {
+            luz::print_error_line(
+                "luz: warning: this MPI library has no MPI_THREAD_MULTIPLE: a process that stops "
+                "answering is not noticed (LUZ_MPI_TIMEOUT)");
+        }
+        timeout = 0;
+    }
+    luz::mpi::Heartbeat heart(MPI_COMM_WORLD, timeout);
+    luz::mpi::g_heart = timeout > 0 ? &heart : nullptr;
     const int status =
         rank == 0 ? luz::mpi::run_rank0(argc, argv) : luz::mpi::run_other(argc, argv, rank, size);
+    luz::mpi::g_heart = nullptr;
+    heart.finish();  // every message received: nothing left for MPI_Finalize
     // This process's part is over. Once one process exits non-zero, mpirun ends the others with
     // SIGTERM (they may still be in MPI_Finalize): that must end them silently, not print
     // "luz: interrupted" after the one message rank 0 printed.

@@ -1,9 +1,9 @@
 // MpiTileShare: tiles handed out on request by rank 0, their bytes gathered there (and, for a
-// pass every process needs, broadcast back). Every MPI call is made by one thread at a time
-// (MPI_THREAD_SERIALIZED): under mutex_ by the render threads (rank 0 serves the others'
-// requests in next(), between two of its tiles, and in end_pass() once its own are done), and
-// by the main thread between passes. Waits poll, so that a cancelled render (a signal) stops
-// waiting at once.
+// pass every process needs, broadcast back). Every MPI call here is made by one thread at a time
+// (the heartbeat's thread has a communicator of its own): under mutex_ by the render threads (rank
+// 0 serves the others' requests in next(), between two of its tiles, and in end_pass() once its own
+// are done), and by the main thread between passes. Waits poll, so that a cancelled render (a
+// signal) stops waiting at once.
 #include "mpi/mpi_tile_share.h"
 
 #include <algorithm>

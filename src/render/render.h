@@ -43,8 +43,9 @@ struct RenderControl {
     AaMask* aa_mask = nullptr;
     /// When set, receives the per-term images it holds (SPEC §1.5), each the image's size.
     const TermPlanes* terms = nullptr;
-    /// When set, called at most once per render (from a render thread) with a warning about
-    /// the render itself, e.g. an exploding ray tree (render/ray_render.cpp).
+    /// When set, called (from a render thread, any thread) with a warning about the render
+    /// itself, each kind at most once per render: an exploding ray tree (render/ray_render.cpp),
+    /// a --checkpoint that could not be written (render/work_items.h).
     std::function<void(const std::string&)> warning;
     /// When set, the ray pipelines keep finished tiles in it and skip those it already holds
     /// (render/checkpoint.h); the zbuffer renders every tile.

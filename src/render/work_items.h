@@ -28,6 +28,33 @@ struct TileCode {
     Read read;
 };
 
+/// code.read(t, in); false when `in` is short (read_raw() throws).
+template <class Code>
+bool read_tile(Code& code, size_t t, std::string_view& in) {
+    try {
+        code.read(t, in);
+        return true;
+    } catch (const InputError&) {
+        return false;
+    }
+}
+
+/// Puts back tile t (item base + t) from the checkpoint: exactly its bytes, or InputError.
+template <class Code>
+void read_saved(Code& code, const Checkpoint& checkpoint, size_t base, size_t t) {
+    std::string_view in = checkpoint.data(base + t);
+    const bool whole = read_tile(code, t, in);
+    if (!whole || !in.empty()) {
+        throw InputError(checkpoint.path() + ": --checkpoint: damaged checkpoint (tile " +
+                         std::to_string(base + t) + " is " + (whole ? "long" : "short") + ")");
+    }
+}
+
+/// Passes a checkpoint's warning (a failed periodic write) on, if any.
+inline void warn(const RenderControl& control, const std::string& message) {
+    if (!message.empty() && control.warning) control.warning(message);
+}
+
 template <class Code, class Elsewhere, class Rays>
 void run_shared(const RenderControl& control, Checkpoint* checkpoint,
                 const std::vector<size_t>& list, size_t base, bool everyone, Code& code,
@@ -43,18 +70,12 @@ void run_pass(const RenderControl& control, Checkpoint* checkpoint, const std::v
     const auto cancelled = [&] {
         return control.cancel && control.cancel->load(std::memory_order_relaxed);
     };
-    const auto read_all = [&](size_t t, std::string_view in, const std::string& damaged) {
-        code.read(t, in);
-        if (!in.empty()) throw InputError(damaged);
-    };
     if (!control.share) {
         parallel_items(control.threads, list.size(), [&](size_t item) {
             if (cancelled()) return;
             const size_t t = list[item];
             if (checkpoint && checkpoint->done(base + t)) {
-                read_all(
-                    t, checkpoint->data(base + t),
-                    checkpoint->path() + ": --checkpoint: damaged checkpoint (a tile is long)");
+                read_saved(code, *checkpoint, base, t);
                 elsewhere(t);
                 return;
             }
@@ -62,7 +83,7 @@ void run_pass(const RenderControl& control, Checkpoint* checkpoint, const std::v
             if (checkpoint && !cancelled()) {
                 std::string bytes;
                 code.write(t, bytes);
-                checkpoint->finish(base + t, std::move(bytes));
+                warn(control, checkpoint->finish(base + t, std::move(bytes)));
             }
         });
         return;
@@ -84,18 +105,13 @@ void run_shared(const RenderControl& control, Checkpoint* checkpoint,
     const auto cancelled = [&] {
         return control.cancel && control.cancel->load(std::memory_order_relaxed);
     };
-    const auto read_all = [&](size_t t, std::string_view in, const std::string& damaged) {
-        code.read(t, in);
-        if (!in.empty()) throw InputError(damaged);
-    };
     TileShare& share = *control.share;
     std::vector<char> held(list.size(), 0);
     if (checkpoint) {
         for (size_t item = 0; item < list.size(); ++item) {
             const size_t t = list[item];
             if (!checkpoint->done(base + t)) continue;
-            read_all(t, checkpoint->data(base + t),
-                     checkpoint->path() + ": --checkpoint: damaged checkpoint (a tile is long)");
+            read_saved(code, *checkpoint, base, t);
             elsewhere(t);
             held[item] = 1;
             share.restored(item, std::string(checkpoint->data(base + t)), rays(t));
@@ -105,7 +121,8 @@ void run_shared(const RenderControl& control, Checkpoint* checkpoint,
         list.size(), everyone, held,
         [&](size_t item, std::string_view bytes) {
             elsewhere(list[item]);
-            if (checkpoint) checkpoint->finish(base + list[item], std::string(bytes));
+            if (checkpoint)
+                warn(control, checkpoint->finish(base + list[item], std::string(bytes)));
         },
         control.cancel);
     const int threads = resolve_threads(control.threads);
@@ -115,12 +132,14 @@ void run_shared(const RenderControl& control, Checkpoint* checkpoint,
             code.render(t);
             std::string bytes;
             code.write(t, bytes);
-            if (checkpoint && !cancelled()) checkpoint->finish(base + t, bytes);
+            if (checkpoint && !cancelled()) warn(control, checkpoint->finish(base + t, bytes));
             share.finished(item, std::move(bytes), rays(t));
         }
     });
     for (const auto& [item, bytes] : share.end_pass()) {
-        read_all(list[item], bytes, "mpirun: a tile another process sent is damaged (long)");
+        std::string_view in = bytes;
+        if (!read_tile(code, list[item], in) || !in.empty())
+            throw InputError("mpirun: a tile another process sent is damaged");
     }
 }
 

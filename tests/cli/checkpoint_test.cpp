@@ -112,12 +112,16 @@ TEST_F(Checkpoint, DamagedOrForeignFilesAreRefused) {
     struct Case {
         std::string bytes, message;
     };
-    std::string other_version = saved;
-    other_version[8] = 7;
+    std::string version_1 = saved;  // the format before checksums
+    version_1[8] = 1;
     const std::vector<Case> cases = {
-        {saved.substr(0, saved.size() - 20), "truncated or damaged checkpoint"},
+        {saved.substr(0, saved.size() - 20),
+         "damaged checkpoint (truncated: " + std::to_string(saved.size() - 20) +
+             " bytes, its end missing)"},
         {"P6\n1 1\n255\nabc", "not a luz checkpoint"},
-        {other_version, "checkpoint of version 7, this luz writes 1"},
+        {version_1,
+         "checkpoint of version 1, this luz writes 2 (render again without it, or remove the "
+         "file)"},
     };
     for (const Case& c : cases) {
         write_file(dir_ / "render.ckpt", c.bytes);

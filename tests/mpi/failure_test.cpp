@@ -1,6 +1,6 @@
-// A process that dies ends the whole `mpirun -np N luz render` within seconds (SPEC §3.1):
-// SIGKILL to one worker, or SIGINT to mpirun, during a long render: a non-zero exit within
-// 10 s, no output or temporary file left behind, and no luz-mpi process of the run remaining.
+// A process that dies or stops answering ends the whole `mpirun -np N luz render` within seconds
+// (SPEC §3.1): SIGKILL, SIGTERM or SIGSTOP to one process, or SIGINT to mpirun, during a long
+// render: a non-zero exit, no output or temporary file left behind, no luz-mpi process remaining.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -125,6 +125,59 @@ TEST_F(ProcessFailure, SigtermToOneWorkerEndsTheRun) {
     ASSERT_GT(victim, 0) << "no process of rank 2";
     ASSERT_EQ(kill(victim, SIGTERM), 0);
     expect_whole_run_ends(20.0);
+}
+
+// A process that stops answering (SIGSTOP: alive, silent) ends the run once it has been silent
+// for LUZ_MPI_TIMEOUT seconds (here 3), with one message naming it; it used to keep the others
+// waiting for ever. A worker lost: rank 0 keeps its --checkpoint. Rank 0 lost: rank 1 says so.
+class FrozenProcess : public ProcessFailure {
+  protected:
+    void TearDown() override {
+        for (const pid_t p : luz_mpi_processes(dir_)) kill(p, SIGKILL);  // none left behind,
+        for (const pid_t p : pids_) kill(p, SIGCONT);                    // stopped or not
+        ProcessFailure::TearDown();
+    }
+
+    /// Starts the slow render with LUZ_MPI_TIMEOUT=3, stops process `rank` once it is under way;
+    /// returns standard error once the run has ended (within 3 + 8 s).
+    std::string stop_and_wait(int rank, const std::vector<std::string>& extra) {
+        std::vector<std::string> args = kSlowRender;
+        args.insert(args.end(), extra.begin(), extra.end());
+        setenv("LUZ_MPI_TIMEOUT", "3", 1);
+        start_slow_render(args);
+        unsetenv("LUZ_MPI_TIMEOUT");
+        if (HasFatalFailure()) return "";
+        const pid_t victim = process_of_rank(rank);
+        EXPECT_GT(victim, 0) << "no process of rank " << rank;
+        EXPECT_EQ(kill(victim, SIGSTOP), 0);
+        const auto stopped = Clock::now();
+        const int status = wait_for_exit(run_.pid, 3 + 8);
+        const double seconds = std::chrono::duration<double>(Clock::now() - stopped).count();
+        EXPECT_NE(status, -1) << "still waiting 11 s after the SIGSTOP: " << err_text();
+        EXPECT_NE(status, 0) << err_text();
+        if (status != -1) run_.pid = -1;
+        RecordProperty("seconds_to_exit", std::to_string(seconds));
+        return err_text();
+    }
+};
+
+TEST_F(FrozenProcess, AStoppedWorkerEndsTheRunNamingIt) {
+    const std::string err = stop_and_wait(2, {"--checkpoint", "c.ckpt"});
+    EXPECT_EQ(count_lines_containing(err, "luz: process 2 of 3 has sent nothing for "), 1) << err;
+    EXPECT_EQ(count_lines_containing(err, "luz: "), 1) << err;
+    // What was done is kept; the image, its statistics, mask and terms are not written.
+    EXPECT_EQ(list_dir(dir_), std::set<std::string>{"c.ckpt"}) << err;
+}
+
+TEST_F(FrozenProcess, AStoppedRank0EndsTheRunNamingIt) {
+    const std::string err = stop_and_wait(0, {});
+    EXPECT_EQ(count_lines_containing(
+                  err, "luz: process 1 of 3: process 0 of 3 (rank 0) has sent nothing for "),
+              1)
+        << err;
+    EXPECT_EQ(count_lines_containing(err, "has sent nothing"), 1) << err;
+    const std::set<std::string> left = list_dir(dir_);
+    EXPECT_TRUE(left.empty()) << *left.begin();
 }
 
 // --checkpoint under mpirun (SPEC §3): interrupted under 3 processes, the checkpoint stays and
