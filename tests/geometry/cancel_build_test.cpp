@@ -56,5 +56,33 @@ TEST(CancelBuild, ASceneBuildStops) {
     EXPECT_THROW(build_scene(desc), Cancelled);
 }
 
+TEST(CancelBuild, AScenesBvhBuildStopsAndCanBeBuiltAgain) {
+    // as Scene::prepare() builds it on the first ray-traced render, under its lock
+    SceneDesc desc;
+    desc.geometry.accel = Accel::none;
+    for (int i = 0; i < 5000; ++i) {
+        ObjectDesc o;
+        o.center = Vec3{float(i % 50), float(i / 50), 0.0f};
+        o.radius = 0.3f;
+        desc.objects.push_back(o);
+    }
+    BuiltScene scene = build_scene(desc);
+    const BuiltScene whole = [&] {
+        BuiltScene s = build_scene(desc);
+        build_bvh(s);
+        return s;
+    }();
+    std::atomic<bool> cancel{true};
+    const CancelScope scope(&cancel);
+    EXPECT_THROW(build_bvh(scene), Cancelled);
+    EXPECT_FALSE(scene.has_bvh);
+    cancel = false;
+    build_bvh(scene);
+    EXPECT_TRUE(scene.has_bvh);
+    EXPECT_EQ(scene.bvh.nodes().size(), whole.bvh.nodes().size());
+    EXPECT_EQ(scene.bvh_blocks.size(), whole.bvh_blocks.size());
+    EXPECT_EQ(scene.unbounded, whole.unbounded);
+}
+
 }  // namespace
 }  // namespace luz
