@@ -18,8 +18,6 @@
 #include <system_error>
 #include <utility>
 
-#include "scene/cancel.h"
-
 namespace luz {
 namespace {
 
@@ -57,30 +55,20 @@ uint64_t random_suffix() {
 }
 
 /// Writes all of `pieces` to `fd`, one after the other, with as few system calls as the
-/// kernel allows (writev, IOV_MAX pieces and at most 64 MiB at a time, so that the calling
-/// thread's cancel flag is looked at between them); false with errno set on failure
-/// (ECANCELED once the flag is set).
+/// kernel allows (writev, IOV_MAX pieces at a time); false with errno set on failure.
 bool write_all(int fd, std::vector<std::string_view> pieces) {
-    constexpr size_t kMaxBytes = size_t{64} << 20;
-    const std::atomic<bool>* cancel = cancel_flag();
     size_t first = 0;
     while (first < pieces.size()) {
         if (pieces[first].empty()) {
             ++first;
             continue;
         }
-        if (cancel_requested(cancel)) {
-            errno = ECANCELED;
-            return false;
-        }
         iovec iov[IOV_MAX];
         int count = 0;
-        size_t bytes = 0;
-        for (size_t k = first; k < pieces.size() && count < IOV_MAX && bytes < kMaxBytes; ++k) {
+        for (size_t k = first; k < pieces.size() && count < IOV_MAX; ++k) {
             if (pieces[k].empty()) continue;
             iov[count].iov_base = const_cast<char*>(pieces[k].data());
-            iov[count].iov_len = std::min(pieces[k].size(), kMaxBytes - bytes);
-            bytes += iov[count].iov_len;
+            iov[count].iov_len = pieces[k].size();
             ++count;
         }
         ssize_t n = ::writev(fd, iov, count);
@@ -131,7 +119,6 @@ PendingFile::PendingFile(std::string path_in, const std::vector<std::string_view
     if (::close(fd) != 0 && err == 0) err = errno;
     if (err != 0) {
         ::unlink(tmp.c_str());
-        if (err == ECANCELED) throw Cancelled{};
         fail(err);
     }
     tmp_ = tmp;
