@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "api/list_commands.h"  // print_scenes(), print_materials(): `luz scenes`, `luz materials`
+#include "scene/cancel.h"       // CancelScope: a load, build or encoding stops with Cancelled
 #include "scene/demo_scenes.h"
 #include "scene/input_error.h"
 #include "scene/obj_loader.h"  // set_max_text_file_bytes(): the cap on a mesh file

@@ -3,6 +3,8 @@
 // (app/main.cpp) and, on rank 0, by `luz-mpi` (src/mpi/), which renders frames its own way.
 #include "app/cli_main.h"
 
+#include <signal.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
@@ -87,11 +89,16 @@ int run(int argc, char** argv, const FrameRenderer* render_frame) {
 
 /// run() with its failures turned into messages and exit statuses.
 int run_reporting_failures(int argc, char** argv, const FrameRenderer* render_frame) {
+    // The signal flag also stops loads, builds and encodings at their next check (Cancelled).
+    const CancelScope cancel(&interrupt_flag());
     try {
         return run(argc, argv, render_frame);
     } catch (const luz::Interrupted& e) {
         print_error_line("luz: interrupted");  // nothing written (app/signals.h)
         return 128 + e.signal;
+    } catch (const luz::Cancelled&) {
+        print_error_line("luz: interrupted");  // the temporary files went with their owners
+        return 128 + (interrupt_signal() != 0 ? interrupt_signal() : SIGINT);
     } catch (const luz::InputError& e) {
         print_error_line(e.what());  // already names the file and the place
         return 2;

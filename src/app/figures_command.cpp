@@ -1,11 +1,10 @@
-// `luz figures`: checks DIR, finds the figures program (installed copy under share/luz/figures/
-// or the source tree's src/figures/), runs Debian's python3 on it into a temporary folder next
-// to DIR, and renames that folder into place only when it succeeded.
+// `luz figures`: checks DIR (new, empty, or a folder luz figures made: it holds .luz-figures),
+// finds the figures program (installed copy under share/luz/figures/ or the source tree's
+// src/figures/), runs Debian's python3 on it into a temporary folder next to DIR, and renames
+// that folder into place only when it succeeded.
 #include "app/figures_command.h"
 
-#include <signal.h>
 #include <stdlib.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -17,6 +16,8 @@
 #include <string>
 #include <system_error>
 #include <vector>
+
+#include "app/child_process.h"
 
 #ifndef LUZ_FIGURES_SOURCE_DIR
 #define LUZ_FIGURES_SOURCE_DIR ""
@@ -31,6 +32,13 @@ namespace luz {
 namespace {
 
 constexpr const char* kPython = "/usr/bin/python3";  // Debian's, with python3-matplotlib
+
+/// The file that marks a folder as made by luz figures: only such a folder (or an empty one) is
+/// ever replaced.
+constexpr const char* kMarker = ".luz-figures";
+constexpr const char* kMarkerText =
+    "This folder was made by `luz figures`: the next `luz figures -o` into it replaces it "
+    "whole.\n";
 
 /// Where the figures program and its scenes are: {script, scenes root}, or empty paths.
 struct FiguresFiles {
@@ -55,59 +63,55 @@ FiguresFiles find_figures_files(const fs::path& exe) {
     return {};
 }
 
-/// Runs `argv` and waits; SIGINT and SIGTERM reach the child (same process group) while this
-/// process only waits, so it can clean up afterwards. Returns the exit status, 128 + signal
-/// when the child was killed, or 127 when it could not start.
-int run_child(const std::vector<std::string>& argv) {
-    std::vector<char*> args;
-    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    struct sigaction ignore {
-    }, old_int{}, old_term{};
-    ignore.sa_handler = SIG_IGN;
-    sigaction(SIGINT, &ignore, &old_int);
-    sigaction(SIGTERM, &ignore, &old_term);
-    const pid_t pid = fork();
-    if (pid == 0) {
-        signal(SIGINT, SIG_DFL);
-        signal(SIGTERM, SIG_DFL);
-        execv(args[0], args.data());
-        _exit(127);
-    }
-    int status = 0;
-    int result = 127;
-    if (pid > 0) {
-        while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-        }
-        result = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    }
-    sigaction(SIGINT, &old_int, nullptr);
-    sigaction(SIGTERM, &old_term, nullptr);
-    return result;
-}
-
 /// Prints "luz figures: MESSAGE" as one line and returns `code`.
 int fail(int code, const std::string& message) {
     std::fprintf(stderr, "luz figures: %s\n", message.c_str());
     return code;
 }
 
+/// Whether the folder `dir` may be replaced: it is empty or luz figures made it.
+bool replaceable(const fs::path& dir) {
+    std::error_code ec;
+    if (fs::is_regular_file(fs::symlink_status(dir / kMarker, ec))) return true;
+    return fs::is_empty(dir, ec) && !ec;
+}
+
+/// The message for a folder luz will not replace.
+std::string not_ours(const std::string& out) {
+    return out + " exists and is not a luz figures folder (it has no " + kMarker +
+           " file): choose another -o, or remove it first";
+}
+
+/// Writes the marker into the new folder `dir`; false on failure (errno set).
+bool write_marker(const fs::path& dir) {
+    std::FILE* f = std::fopen((dir / kMarker).c_str(), "wx");
+    if (f == nullptr) return false;
+    const bool ok = std::fputs(kMarkerText, f) >= 0;
+    return std::fclose(f) == 0 && ok;
+}
+
 }  // namespace
 
 void add_figures_options(CLI::App& cmd, FiguresOptions& o) {
     cmd.add_option("-o,--output", o.out,
-                   "folder to write the figures and index.html into (default: figures; an "
-                   "existing folder is replaced once every figure is made)")
+                   "folder to write the figures and index.html into (default: figures); an "
+                   "existing one is replaced once every figure is made, only if luz figures "
+                   "made it (or it is empty)")
         ->type_name("DIR");
 }
 
 int run_figures(const FiguresOptions& o) {
     if (o.out.empty()) return fail(2, "-o: empty folder name");
-    const fs::path dir = fs::absolute(fs::path(o.out)).lexically_normal();
+    fs::path dir = fs::absolute(fs::path(o.out)).lexically_normal();
     std::error_code ec;
     const fs::file_status st = fs::symlink_status(dir, ec);
     if (fs::exists(st) && !fs::is_directory(fs::status(dir, ec)))
         return fail(2, "-o " + o.out + ": exists and is not a folder");
+    if (fs::exists(st)) {
+        if (!replaceable(dir)) return fail(2, not_ours(o.out));
+        dir = fs::canonical(dir, ec);  // a symbolic link: its folder is replaced, not the link
+        if (ec) return fail(1, "-o " + o.out + ": " + ec.message());
+    }
     fs::path name = dir.filename();
     fs::path parent = dir.parent_path();
     if (name.empty() || name == "." || name == "..")
@@ -136,13 +140,29 @@ int run_figures(const FiguresOptions& o) {
         return fail(1, "cannot create a temporary folder in " + parent.string() + ": " +
                            std::strerror(errno));
     const fs::path tmp = tmpl;
-    const int status = run_child({python, files.script.string(), "--luz", exe.string(), "--scenes",
-                                  files.scenes.string(), "--out", tmp.string()});
-    if (status != 0) {
+    const ChildResult child = run_child({python, files.script.string(), "--luz", exe.string(),
+                                         "--scenes", files.scenes.string(), "--out", tmp.string()});
+    if (child.status != 0 || child.stopped != 0) {
         fs::remove_all(tmp, ec);
-        if (status == 127) return fail(1, "could not run " + python);
-        if (status >= 128) return status;  // interrupted: the child said nothing more
+        if (child.stopped != 0) return fail(128 + child.stopped, "interrupted");
+        if (child.status == 127) return fail(1, "could not run " + python);
+        if (child.status >= 128) return child.status;  // killed from elsewhere
         return fail(1, "not every figure could be made; " + o.out + " left as it was");
+    }
+    if (stop_signal() != 0) {  // a signal since the program ended: nothing replaced yet
+        fs::remove_all(tmp, ec);
+        return fail(128 + stop_signal(), "interrupted");
+    }
+    if (!write_marker(tmp)) {
+        const std::string why = std::strerror(errno);
+        fs::remove_all(tmp, ec);
+        return fail(1, "cannot write " + (tmp / kMarker).string() + ": " + why);
+    }
+    // DIR may have appeared while the figures were made
+    if (fs::exists(fs::symlink_status(dir, ec)) &&
+        (!fs::is_directory(fs::symlink_status(dir, ec)) || !replaceable(dir))) {
+        fs::remove_all(tmp, ec);
+        return fail(2, not_ours(o.out));
     }
     fs::permissions(tmp,
                     fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |

@@ -51,4 +51,7 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except KeyboardInterrupt:  # Ctrl-C when run by hand: no traceback (`luz figures` sends TERM)
+        sys.exit(130)

@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "math/huge_pages.h"
+#include "scene/cancel.h"
 
 namespace luz {
 
@@ -197,6 +198,15 @@ class Builder {
                                         int depth) {
         auto sub = std::make_unique<Subtree>();
         const auto scratch = std::make_unique<Bins>();
+        if (cancel_requested(cancel_)) {  // cancelled: one leaf, thrown away by build()
+            sub->root = make_node(box);
+            sub->root.offset = static_cast<uint32_t>(begin);
+            sub->root.count = static_cast<uint32_t>(end - begin);
+            flat_[2 * begin] = sub->root;
+            sub->nodes = flat_.get() + 2 * begin;
+            sub->size = 1;
+            return sub;
+        }
         if (end - begin < serial_below_) {
             FlatNodes flat{flat_.get() + 2 * begin};
             build_serial(flat, begin, end, box, cbox, depth, *scratch);
@@ -559,6 +569,8 @@ class Builder {
     int bins_;
     size_t block_;
     size_t serial_below_;  // smaller subtrees are built by one task
+    // The building thread's cancel flag (scene/cancel.h), checked by every task of a large node
+    const std::atomic<bool>* cancel_ = cancel_flag();
 };
 
 }  // namespace
@@ -583,6 +595,7 @@ Bvh Bvh::build(std::span<const Bounds3> bounds, const BvhOptions& options) {
     Box box, cbox;
     builder.bounds_of(0, refs.size(), box, cbox);
     const std::unique_ptr<Subtree> tree = builder.build_task(0, refs.size(), box, cbox, 0);
+    check_cancel();
     bvh.nodes_.resize(tree->size);
     Builder::flatten(*tree, bvh.nodes_.data(), 0);
     bvh.order_.resize(refs.size());

@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "math/transform.h"
+#include "scene/cancel.h"
 #include "scene/input_error.h"
 
 namespace luz {
@@ -79,6 +80,7 @@ Mesh build_mesh(const ObjectDesc& o) {
                              ".transform)");
         }
     }
+    check_cancel();
     std::vector<uint32_t> position(d.position);
     std::vector<int32_t> normal(d.normal);
     if (mirror) {
@@ -96,6 +98,7 @@ Mesh build_mesh(const ObjectDesc& o) {
                                 : o.material;
     }
     for (uint32_t i : position) mesh.bounds.expand(world[i]);
+    check_cancel();
 
     if (!o.smooth) {
         mesh.positions = std::move(world);
@@ -106,6 +109,7 @@ Mesh build_mesh(const ObjectDesc& o) {
     // Smooth: one vertex per distinct (position, file normal) pair; a corner without a usable
     // file normal takes the angle-weighted normal of its position.
     const std::vector<Vec3> computed = angle_weighted_normals(world, position);
+    check_cancel();
     std::vector<Vec3> file_normals(d.normals.size());
     for (size_t i = 0; i < file_normals.size(); ++i) {
         file_normals[i] = unit_or_zero(xf.normal(d.normals[i]));

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "geometry/query_parts.h"
+#include "scene/cancel.h"
 
 namespace luz {
 
@@ -39,6 +40,7 @@ BuiltScene build_scene(const SceneDesc& desc) {
     scene.material_count = desc.materials.size();
     scene.shapes.reserve(desc.objects.size());
     for (size_t i = 0; i < desc.objects.size(); ++i) {
+        check_cancel();
         scene.shapes.push_back(make_shape(desc.objects[i], static_cast<int>(i)));
         scene.bounds.push_back(bounds(scene.shapes.back()));
         if (const auto& m = scene.shapes.back().mesh) scene.mesh_triangles += m->triangle_count();
@@ -78,6 +80,7 @@ void build_bvh(BuiltScene& scene) {
             boxes.push_back(scene.bounds[i]);
         }
     }
+    check_cancel();
     // The SAH counts a leaf's primitives in blocks of four, tested at once.
     BvhOptions options;
     options.leaf_block = PrimBlock::kLanes;

@@ -16,6 +16,7 @@
 
 #include "image/image_codecs.h"
 #include "image/image_io.h"
+#include "scene/cancel.h"
 
 namespace luz {
 namespace {
@@ -188,6 +189,7 @@ std::string encode_exr_layers(const Image& img, const std::vector<ExrLayer>& lay
     exr_encode_pipeline_t& encode = session.encode;
     Compress library_compress = nullptr;
     for (int64_t y = 0; y < img.height; y += lines) {
+        check_cancel();  // chunk by chunk (16 lines): an 8192² image takes seconds
         exr_chunk_info_t cinfo{};
         check(exr_write_scanline_chunk_info(ctxt, part, static_cast<int>(y), &cinfo));
         if (!session.encoding) {

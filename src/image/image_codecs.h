@@ -13,7 +13,9 @@
 namespace luz {
 
 // Every function here throws ImageError (or std::bad_alloc) with a message that does not name
-// the file: the caller prefixes it. Encoders expect a non-empty, consistent image.
+// the file: the caller prefixes it. Encoders expect a non-empty, consistent image, and stop
+// with Cancelled (scene/cancel.h) within a band of rows once the calling thread's cancel flag
+// is set.
 
 /// PNG, 8-bit RGB, values from encode_8bit; an sRGB chunk only when `e` is srgb.
 std::string encode_png(const Image& img, Encoding e);

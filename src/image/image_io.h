@@ -48,7 +48,8 @@ inline uint8_t encode_8bit(float I, Encoding e) {
 }
 
 /// The bytes of `img` in the format its extension names, as write_image would write them (for
-/// files committed together with others, see atomic_file.h); throws ImageError naming `path`.
+/// files committed together with others, see atomic_file.h); throws ImageError naming `path`,
+/// or Cancelled once the calling thread's cancel flag (scene/cancel.h) is set.
 std::string encode_image(const std::string& path, const Image& img, Encoding e = Encoding::linear);
 
 /// The same with further EXR layers (ignored by the other formats: only .exr holds layers).

@@ -9,6 +9,7 @@
 
 #include "image/image_codecs.h"
 #include "image/image_io.h"
+#include "scene/cancel.h"
 
 namespace luz {
 namespace {
@@ -97,10 +98,14 @@ std::string encode_ppm(const Image& img, Encoding e) {
     const size_t header = out.size();
     out.resize(header + img.pixels.size() * 3);
     char* p = out.data() + header;
-    for (const Rgb& c : img.pixels) {
-        *p++ = static_cast<char>(encode_8bit(c.x, e));
-        *p++ = static_cast<char>(encode_8bit(c.y, e));
-        *p++ = static_cast<char>(encode_8bit(c.z, e));
+    for (int y = 0; y < img.height; ++y) {
+        check_cancel();  // row by row: an 8192² image takes a second
+        for (int x = 0; x < img.width; ++x) {
+            const Rgb& c = img.at(x, y);
+            *p++ = static_cast<char>(encode_8bit(c.x, e));
+            *p++ = static_cast<char>(encode_8bit(c.y, e));
+            *p++ = static_cast<char>(encode_8bit(c.z, e));
+        }
     }
     return out;
 }
@@ -141,6 +146,7 @@ std::string encode_pfm(const Image& img) {
         "PF\n" + std::to_string(img.width) + " " + std::to_string(img.height) + "\n-1.0\n";
     out.reserve(out.size() + img.pixels.size() * 12);
     for (int y = img.height - 1; y >= 0; --y) {  // rows from the bottom up
+        check_cancel();                          // row by row: an 8192² image takes seconds
         for (int x = 0; x < img.width; ++x) {
             const Rgb& c = img.at(x, y);
             put_float_le(out, c.x);

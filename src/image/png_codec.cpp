@@ -18,6 +18,7 @@
 
 #include "image/image_codecs.h"
 #include "image/image_io.h"
+#include "scene/cancel.h"
 
 namespace luz {
 namespace {
@@ -208,11 +209,14 @@ void PngBands::add(const Image& rows, int count) {
         throw ImageError("PNG encoding failed: rows given out of order");
     }
     const int first_band = done_ / kBandRows, bands = (count + kBandRows - 1) / kBandRows;
+    const std::atomic<bool>* cancel = cancel_flag();  // checked band by band (~1.5 MB each)
     tbb::parallel_for(0, bands, [&](int b) {
+        if (cancel_requested(cancel)) return;
         const int first = b * kBandRows, n = std::min(kBandRows, count - first);
         const bool last = done_ + first + n == height_;
         deflate_band(rows, first, n, last, encoding_, bands_->list[first_band + b]);
     });
+    check_cancel();
     done_ += count;
 }
 

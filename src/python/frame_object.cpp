@@ -1,6 +1,7 @@
 // luz.Frame's views, statistics and files.
 #include "python/frame_object.h"
 
+#include "python/interruptible.h"
 #include "python/json_convert.h"
 
 namespace luz::python {
@@ -23,16 +24,17 @@ py::dict frame_stats(const FrameObject& f) {
 
 void save_frame(const FrameObject& f, const std::string& path) {
     check_output_path(path, "path");
-    py::gil_scoped_release nogil;
-    write_frame_files(f.frame, path, f.scene->desc.image.encoding);
+    // Ctrl-C stops the encoding of a large image (and its temporary files go)
+    run_interruptibly([&](const std::atomic<bool>&) {
+        write_frame_files(f.frame, path, f.scene->desc.image.encoding);
+    });
 }
 
 py::bytes frame_png(const FrameObject& f) {
     std::string bytes;
-    {
-        py::gil_scoped_release nogil;
+    run_interruptibly([&](const std::atomic<bool>&) {
         bytes = encode_frame(f.frame, "frame.png", f.scene->desc.image.encoding);
-    }
+    });
     return py::bytes(bytes);
 }
 

@@ -10,6 +10,7 @@
 #include "luz/luz.h"
 #include "python/arguments.h"
 #include "python/frame_object.h"
+#include "python/interruptible.h"
 #include "python/json_convert.h"
 #include "python/render_call.h"
 #include "python/scene_handle.h"
@@ -84,13 +85,12 @@ py::object ray_tree_py(py::handle scene, py::handle px, py::handle py_, py::hand
     const int x = static_cast<int>(int_argument(px, "px", 0, s->desc.image.width - 1));
     const int y = static_cast<int>(int_argument(py_, "py", 0, s->desc.image.height - 1));
     std::string text;
-    {
-        py::gil_scoped_release nogil;
+    run_interruptibly([&](const std::atomic<bool>&) {
         const RayTree tree = ray_tree(s->scene, s->desc, x + 0.5f, y + 0.5f);
         // The pixel's value: its centre sample's colour (the tree's total).
         const Rgb pixel = tree.nodes.empty() ? Rgb{} : tree.nodes[0].color;
         text = ray_tree_json(tree, s->desc, x, y, pixel);
-    }
+    });
     return to_python(nlohmann::ordered_json::parse(text));
 }
 
@@ -139,7 +139,8 @@ set: a dict {PATH: value} applied like `luz render --set PATH=JSON`, in order: d
     dicts, bool, None).
 
 Raises SceneError (a ValueError) with the command line's one-line message for bad input,
-TypeError for a wrong argument type. Warnings (a missing MTL file …) are SceneWarning.)";
+TypeError for a wrong argument type. Warnings (a missing MTL file …) are SceneWarning.
+Ctrl-C (KeyboardInterrupt) stops a long load or build within a second.)";
 
 constexpr const char* kRenderDoc =
     R"(render(scene, *, pipeline=None, model=None, width=None, height=None, max_depth=None, aa=None, samples=None, threshold=None, threads=0, aov=(), set=None, region=None, progress=False) -> Frame
@@ -240,6 +241,11 @@ PYBIND11_MODULE(_luz, m) {
     py::options options;
     options.disable_function_signatures();
     m.attr("__version__") = LUZ_VERSION;
+
+    // Work still running in other threads when the interpreter exits is cancelled and joined
+    // first (python/interruptible.h).
+    py::module_::import("atexit").attr("register")(
+        py::cpp_function(&cancel_all_at_exit, py::name("_cancel_all_at_exit")));
 
     // A mesh file may take a quarter of the memory limit, as `luz render` allows by default.
     set_max_text_file_bytes(default_memory_limit() / 4);

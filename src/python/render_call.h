@@ -10,10 +10,10 @@
 namespace luz::python {
 
 /// Renders `scene` with `options` (threads, per-term images; its cancel flag and progress are
-/// set here). Every ~50 ms the waiting thread takes the GIL and calls PyErr_CheckSignals(): on
-/// KeyboardInterrupt (or any exception a signal handler raises) the render is cancelled, joined
-/// and the exception raised. `progress` (None, or a callable taking the fraction done) is
-/// called from the waiting thread only, never from the render's threads. Call with the GIL.
+/// set here) through run_interruptibly(): Ctrl-C (KeyboardInterrupt, or any exception a signal
+/// handler raises) cancels the render, joins it and raises. `progress` (None, or a callable
+/// taking the fraction done) is called from the waiting thread only, never from the render's
+/// threads; an exception it raises stops the render too. Call with the GIL.
 Frame render_interruptibly(const SceneRef& scene, RenderOptions options, pybind11::handle progress);
 
 }  // namespace luz::python

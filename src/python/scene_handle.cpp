@@ -3,7 +3,9 @@
 #include "python/scene_handle.h"
 
 #include <algorithm>
+#include <optional>
 
+#include "python/interruptible.h"
 #include "python/json_convert.h"
 
 namespace luz::python {
@@ -77,26 +79,22 @@ SceneRef derive(const SceneRef& base, const std::vector<Override>& extra) {
 }
 
 SceneRef load_source(py::handle source, const std::vector<Override>& overrides) {
+    // Reading, parsing and building run interruptibly: Ctrl-C stops a long load.
     if (py::isinstance<SceneHandle>(source)) {
         const SceneRef base = source.cast<SceneRef>();
         SceneRef h;
-        {
-            py::gil_scoped_release nogil;
-            h = derive(base, overrides);
-        }
+        run_interruptibly([&](const std::atomic<bool>&) { h = derive(base, overrides); });
         warn(h->desc, &base->desc);
         return h;
     }
     SceneText text;
+    std::optional<std::string> path;  // a file or demo to read, or the dict's text
     if (PyDict_Check(source.ptr())) {
         text = {to_json(source, "<dict>").dump(), "<dict>", ""};
     } else if (PyUnicode_Check(source.ptr()) || PyBytes_Check(source.ptr()) ||
                py::hasattr(source, "__fspath__")) {
         // os.fsdecode: str as it is, bytes and path-like objects as the OS names them
-        const std::string path =
-            py::module_::import("os").attr("fsdecode")(source).cast<std::string>();
-        py::gil_scoped_release nogil;
-        text = read_scene_text(path);
+        path = py::module_::import("os").attr("fsdecode")(source).cast<std::string>();
     } else {
         throw py::type_error(
             std::string("scene: expected a scene file path, \"demo:NAME\", a dict or a "
@@ -104,10 +102,10 @@ SceneRef load_source(py::handle source, const std::vector<Override>& overrides) 
             Py_TYPE(source.ptr())->tp_name);
     }
     SceneRef h;
-    {
-        py::gil_scoped_release nogil;
+    run_interruptibly([&](const std::atomic<bool>&) {
+        if (path) text = read_scene_text(*path);
         h = make_handle(std::move(text), overrides);
-    }
+    });
     warn(h->desc);
     return h;
 }

@@ -17,6 +17,7 @@
 #include "render/zbuffer_antialias.h"
 #include "render/zbuffer_shade.h"
 #include "scene/camera.h"
+#include "scene/cancel.h"
 
 namespace luz {
 
@@ -203,6 +204,7 @@ ZbufferGeometry prepare_zbuffer(const BuiltScene& scene, const Settings& setting
     g.raster_spare = std::make_shared<RasterSpare>();
     const int level = scene.geometry.tessellation;
     for (const Shape& s : scene.shapes) {
+        check_cancel();  // thousands of shapes take a while to tessellate
         const size_t first = g.mesh.indices.size();
         if (s.type == ShapeType::plane) {
             append_plane_grid(scene, settings.camera, s, g.mesh);

@@ -4,6 +4,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <charconv>
@@ -18,6 +19,8 @@
 #include <map>
 #include <stdexcept>
 #include <streambuf>
+
+#include "scene/cancel.h"
 
 namespace luz {
 namespace {
@@ -215,6 +218,7 @@ ObjScan scan_obj(std::string_view text, const std::string& file) {
     float numbers[8];
     while (lines.next(line)) {
         const size_t n = lines.number();
+        if (n % 65536 == 0) check_cancel();
         Tokens tokens(line);
         std::string_view keyword;
         if (!tokens.next(keyword) || keyword[0] == '#') continue;
@@ -356,13 +360,28 @@ std::vector<Material> scan_mtl(std::string_view text, const std::string& file,
     return out;
 }
 
-/// A read-only std::streambuf over a string, so tinyobjloader reads it without a copy.
+/// A read-only std::streambuf over a string, so tinyobjloader reads it without a copy; given a
+/// MiB at a time, so that it ends early (the caller then checks) once the load is cancelled.
 class ViewBuffer : public std::streambuf {
   public:
-    explicit ViewBuffer(std::string_view s) {
+    explicit ViewBuffer(std::string_view s) : s_(s) {
         char* p = const_cast<char*>(s.data());
-        setg(p, p, p + s.size());
+        setg(p, p, p);
     }
+
+  protected:
+    int_type underflow() override {
+        const size_t at = static_cast<size_t>(egptr() - s_.data());
+        if (at == s_.size() || cancel_requested(cancel_)) return traits_type::eof();
+        char* p = const_cast<char*>(s_.data()) + at;
+        setg(p, p, p + std::min(s_.size() - at, kWindow));
+        return traits_type::to_int_type(*p);
+    }
+
+  private:
+    static constexpr size_t kWindow = size_t{1} << 20;
+    std::string_view s_;
+    const std::atomic<bool>* cancel_ = cancel_flag();
 };
 
 /// Reads the MTL files an OBJ names (tinyobjloader calls it at each `mtllib`).
@@ -508,6 +527,7 @@ MeshData parse_obj(std::string_view text, const std::string& file, bool with_mat
                           /*default_vcols_fallback=*/false)) {
         throw InputError(file + ": " + (err.empty() ? "cannot parse" : err));
     }
+    check_cancel();  // the buffer ended early
     if (attrib.vertices.size() != 3 * scan.counts.v ||
         attrib.normals.size() != 3 * scan.counts.vn) {
         throw std::logic_error(file + ": vertex counts differ from tinyobjloader's");
@@ -532,6 +552,7 @@ MeshData parse_obj(std::string_view text, const std::string& file, bool with_mat
         const tinyobj::mesh_t& m = shape.mesh;
         size_t offset = 0;
         for (size_t f = 0; f < m.num_face_vertices.size(); ++f) {
+            if (f % 65536 == 0) check_cancel();
             const size_t corners = m.num_face_vertices[f];
             if (corners == 3) {
                 for (size_t k = 0; k < 3; ++k) {

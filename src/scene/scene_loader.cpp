@@ -13,6 +13,7 @@
 
 #include "scene/animation.h"
 #include "scene/animation_reader.h"
+#include "scene/cancel.h"
 #include "scene/demo_scenes.h"
 #include "scene/json_readers.h"
 #include "scene/material_table.h"
@@ -49,6 +50,7 @@ void read_scene(const Json& doc, const std::string& base_dir, MeshCache* meshes_
     if (const Json* j = top.get("objects")) {
         if (!j->is_array()) fail("objects", "expected an array of objects, got " + describe(*j));
         for (std::size_t i = 0; i < j->size(); ++i) {
+            check_cancel();
             scene.objects.push_back(
                 read_object((*j)[i], join("objects", i), materials, base_dir, meshes));
         }

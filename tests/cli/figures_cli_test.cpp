@@ -1,15 +1,20 @@
-// `luz figures -o DIR` on bad input and failures: exit status, one clear message, and nothing
-// half-written left (no DIR, no temporary folder; an existing DIR untouched unless the run
-// succeeded). The figures program itself is replaced by small fake interpreters
-// (LUZ_FIGURES_PYTHON) so these cases run in milliseconds; tests/figures/ runs the real one.
+// `luz figures -o DIR` on bad input, failures and signals: exit status, one clear message, and
+// nothing half-written left (no DIR, no temporary folder; an existing DIR untouched unless the
+// run succeeded, and replaced only when luz figures made it). The figures program itself is
+// replaced by small fake interpreters (LUZ_FIGURES_PYTHON) so these cases run in milliseconds;
+// tests/figures/ runs the real one (and one case here interrupts it).
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <string>
+#include <thread>
 
 #include "cli/run_luz.h"
+#include "cli/signal_luz.h"
 
 namespace luz::test {
 namespace {
@@ -94,8 +99,14 @@ TEST_F(Figures, WithoutMatplotlibExits1NamingTheDebianPackageAndLeavesNothing) {
     EXPECT_TRUE(entries(dir_).empty()) << "left: " << *list_dir(dir_).begin();
 }
 
+/// Makes folder `dir` as luz figures does: with the marker file.
+void make_figures_folder(const std::filesystem::path& dir) {
+    std::filesystem::create_directory(dir);
+    write_file(dir / ".luz-figures", "made by luz figures");
+}
+
 TEST_F(Figures, AFailedRunLeavesTheExistingFolderAsItWas) {
-    std::filesystem::create_directory(dir_ / "figs");
+    make_figures_folder(dir_ / "figs");
     write_file(dir_ / "figs" / "old.txt", "old");
     // writes a file into --out (the last argument), then fails
     fake_python("py-fail", "for a; do out=$a; done; echo half > \"$out/index.html\"; exit 3");
@@ -103,17 +114,127 @@ TEST_F(Figures, AFailedRunLeavesTheExistingFolderAsItWas) {
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("left as it was"), std::string::npos) << r.err;
     EXPECT_EQ(entries(dir_), (std::set<std::string>{"figs"}));
-    EXPECT_EQ(list_dir(dir_ / "figs"), (std::set<std::string>{"old.txt"}));
+    EXPECT_EQ(list_dir(dir_ / "figs"), (std::set<std::string>{".luz-figures", "old.txt"}));
 }
 
-TEST_F(Figures, ASuccessfulRunReplacesTheFolderWhole) {
-    std::filesystem::create_directory(dir_ / "figs");
+// Writes index.html into --out (the last argument).
+constexpr const char* kWritesPage =
+    "for a; do out=$a; done; echo '<html></html>' > \"$out/index.html\"";
+
+TEST_F(Figures, ASuccessfulRunReplacesAFolderItMadeWhole) {
+    fake_python("py-ok", kWritesPage);
+    const RunResult first = run_luz({"figures", "-o", "figs"}, dir_);
+    EXPECT_EQ(first.status, 0) << first.err;
+    EXPECT_EQ(list_dir(dir_ / "figs"), (std::set<std::string>{".luz-figures", "index.html"}));
     write_file(dir_ / "figs" / "old.txt", "old");
-    fake_python("py-ok", "for a; do out=$a; done; echo '<html></html>' > \"$out/index.html\"");
+    const RunResult again = run_luz({"figures", "-o", "figs"}, dir_);
+    EXPECT_EQ(again.status, 0) << again.err;
+    EXPECT_EQ(entries(dir_), (std::set<std::string>{"figs"}));
+    EXPECT_EQ(list_dir(dir_ / "figs"), (std::set<std::string>{".luz-figures", "index.html"}));
+}
+
+TEST_F(Figures, AnEmptyFolderIsFilled) {
+    std::filesystem::create_directory(dir_ / "figs");
+    fake_python("py-ok", kWritesPage);
     const RunResult r = run_luz({"figures", "-o", "figs"}, dir_);
     EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(list_dir(dir_ / "figs"), (std::set<std::string>{".luz-figures", "index.html"}));
+}
+
+TEST_F(Figures, AFolderLuzDidNotMakeExits2AndIsKeptWhole) {
+    // The case: `-o precious` removed a thesis and its sources.
+    std::filesystem::create_directories(dir_ / "precious" / "src");
+    write_file(dir_ / "precious" / "thesis.tex", "\\documentclass{book}");
+    write_file(dir_ / "precious" / "src" / "main.c", "int main() {}");
+    std::filesystem::create_directory_symlink("precious", dir_ / "link");
+    fake_python("py-ok", kWritesPage);
+    for (const char* out : {"precious", "link", "precious/"}) {
+        const RunResult r = run_luz({"figures", "-o", out}, dir_);
+        EXPECT_EQ(r.status, 2) << out << ": " << r.err;
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find(std::string(out) + " exists and is not a luz figures folder"),
+                  std::string::npos)
+            << r.err;
+        EXPECT_EQ(entries(dir_), (std::set<std::string>{"link", "precious"}));
+        EXPECT_EQ(list_dir(dir_ / "precious"), (std::set<std::string>{"src", "thesis.tex"}));
+        EXPECT_EQ(read_file(dir_ / "precious" / "thesis.tex"), "\\documentclass{book}");
+        EXPECT_EQ(read_file(dir_ / "precious" / "src" / "main.c"), "int main() {}");
+    }
+}
+
+TEST_F(Figures, AFolderMadeThroughASymbolicLinkReplacesItsTarget) {
+    make_figures_folder(dir_ / "figs");
+    std::filesystem::create_directory_symlink("figs", dir_ / "link");
+    fake_python("py-ok", kWritesPage);
+    const RunResult r = run_luz({"figures", "-o", "link"}, dir_);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::is_symlink(dir_ / "link"));
+    EXPECT_EQ(entries(dir_), (std::set<std::string>{"figs", "link"}));
+    EXPECT_EQ(list_dir(dir_ / "figs"), (std::set<std::string>{".luz-figures", "index.html"}));
+}
+
+TEST_F(Figures, SigtermEndsItWithinASecondWithOneLineAndNothingLeft) {
+    make_figures_folder(dir_ / "figs");
+    write_file(dir_ / "figs" / "old.txt", "old");
+    // writes part of the page, then takes its time (a figure being rendered)
+    fake_python("py-slow",
+                "for a; do out=$a; done; echo half > \"$out/index.html\"; mkdir \"$out/work\"; "
+                "exec sleep 5");
+    const Signalled r = signal_luz({"figures", "-o", "figs"}, dir_, SIGTERM, [this] {
+        for (const std::string& n : list_dir(dir_))
+            if (n.rfind(".figs.tmp-", 0) == 0 && std::filesystem::exists(dir_ / n / "work"))
+                return true;
+        return false;
+    });
+    ASSERT_TRUE(r.sent) << r.err;
+    EXPECT_EQ(r.status, 143) << r.err;
+    EXPECT_LT(r.seconds, 1.0);
+    EXPECT_EQ(r.err, "luz figures: interrupted\n");
     EXPECT_EQ(entries(dir_), (std::set<std::string>{"figs"}));
-    EXPECT_EQ(list_dir(dir_ / "figs"), (std::set<std::string>{"index.html"}));
+    EXPECT_EQ(list_dir(dir_ / "figs"), (std::set<std::string>{".luz-figures", "old.txt"}));
+}
+
+TEST_F(Figures, AProgramThatIgnoresSigtermIsKilledWithinASecond) {
+    // ignores TERM, and so does what it starts (a render that would write on)
+    fake_python("py-deaf",
+                "for a; do out=$a; done; trap '' TERM; "
+                "(sleep 0.7; echo late > \"$out/late.txt\") & mkdir \"$out/work\"; sleep 5");
+    const Signalled r = signal_luz({"figures", "-o", "figs"}, dir_, SIGINT, [this] {
+        for (const std::string& n : list_dir(dir_))
+            if (n.rfind(".figs.tmp-", 0) == 0 && std::filesystem::exists(dir_ / n / "work"))
+                return true;
+        return false;
+    });
+    ASSERT_TRUE(r.sent) << r.err;
+    EXPECT_EQ(r.status, 130) << r.err;
+    EXPECT_LT(r.seconds, 1.0);
+    EXPECT_EQ(r.err, "luz figures: interrupted\n");
+    std::this_thread::sleep_for(std::chrono::milliseconds(800));  // the late write would be done
+    EXPECT_TRUE(entries(dir_).empty()) << *entries(dir_).begin();
+}
+
+TEST_F(Figures, CtrlCEndsTheRealProgramQuietlyWithinASecond) {
+    if (std::system("/usr/bin/python3 -c 'import matplotlib, numpy' 2>/dev/null") != 0)
+        GTEST_SKIP() << "Debian's python3-matplotlib is not installed";
+    // Ctrl-C on a terminal: SIGINT to the whole foreground job, once renders are under way.
+    const Signalled r = signal_luz(
+        {"figures", "-o", "figs"}, dir_, SIGINT,
+        [this] {
+            for (const std::string& n : list_dir(dir_))
+                if (n.rfind(".figs.tmp-", 0) == 0 && std::filesystem::exists(dir_ / n / "work") &&
+                    !list_dir(dir_ / n / "work").empty())
+                    return true;
+            return false;
+        },
+        60, /*to_group=*/true);
+    ASSERT_TRUE(r.sent) << r.err;
+    EXPECT_EQ(r.status, 130) << r.err;
+    EXPECT_LT(r.seconds, 1.0);
+    EXPECT_EQ(r.err.find("Traceback"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("KeyboardInterrupt"), std::string::npos) << r.err;
+    ASSERT_GE(r.err.size(), 25u);
+    EXPECT_EQ(r.err.substr(r.err.size() - 25), "luz figures: interrupted\n") << r.err;
+    EXPECT_TRUE(entries(dir_).empty()) << *entries(dir_).begin();
 }
 
 TEST_F(Figures, TheProgramGetsThisBinaryItsScenesAndATemporaryFolderBesideDir) {

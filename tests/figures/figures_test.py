@@ -45,6 +45,8 @@ def run(luz, out):
         os.path.basename(out)), n)]
     if left:
         fail(f"temporary folders left beside {out}: {left}")
+    if not os.path.isfile(os.path.join(out, ".luz-figures")):
+        fail("no .luz-figures marker: the next run would refuse to replace the folder")
     page = open(os.path.join(out, "index.html"), encoding="utf-8").read()
     srcs = re.findall(r'<img src="([^"]+)"', page)
     for f in FIGURES:
