@@ -198,15 +198,16 @@ class Builder {
                                         int depth) {
         auto sub = std::make_unique<Subtree>();
         const auto scratch = std::make_unique<Bins>();
-        if (cancel_requested(cancel_)) {  // cancelled: one leaf, thrown away by build()
+        const auto leaf = [&] {  // a flat subtree of one node
             sub->root = make_node(box);
             sub->root.offset = static_cast<uint32_t>(begin);
             sub->root.count = static_cast<uint32_t>(end - begin);
             flat_[2 * begin] = sub->root;
             sub->nodes = flat_.get() + 2 * begin;
             sub->size = 1;
-            return sub;
-        }
+            return std::move(sub);
+        };
+        if (cancel_requested(cancel_)) return leaf();  // cancelled: thrown away by build()
         if (end - begin < serial_below_) {
             FlatNodes flat{flat_.get() + 2 * begin};
             build_serial(flat, begin, end, box, cbox, depth, *scratch);
@@ -217,14 +218,7 @@ class Builder {
         Box child[4];
         const size_t mid = split(begin, end, depth, box, cbox, child, *scratch);
         sub->root = make_node(box);
-        if (mid == begin) {  // a leaf: a flat subtree of one node
-            sub->root.offset = static_cast<uint32_t>(begin);
-            sub->root.count = static_cast<uint32_t>(end - begin);
-            flat_[2 * begin] = sub->root;
-            sub->nodes = flat_.get() + 2 * begin;
-            sub->size = 1;
-            return sub;
-        }
+        if (mid == begin) return leaf();
         tbb::parallel_invoke(
             [&] { sub->left = build_task(begin, mid, child[0], child[1], depth + 1); },
             [&] { sub->right = build_task(mid, end, child[2], child[3], depth + 1); });
