@@ -241,8 +241,8 @@ PYBIND11_MODULE(_luz, m) {
     options.disable_function_signatures();
     m.attr("__version__") = LUZ_VERSION;
 
-    // A mesh file may take a quarter of the memory limit, as `luz render` allows by default.
-    set_max_text_file_bytes(default_memory_limit() / 4);
+    // The memory limit `luz render` has by default (a scene or mesh file may take a quarter).
+    set_memory_limit(default_memory_limit());
 
     // Both exception classes are held for the life of the process.
     scene_error_type = PyErr_NewExceptionWithDoc(

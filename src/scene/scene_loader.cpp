@@ -5,9 +5,6 @@
 #include "scene/scene_loader.h"
 
 #include <algorithm>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <utility>
 
@@ -20,6 +17,7 @@
 #include "scene/object_reader.h"
 #include "scene/overrides.h"
 #include "scene/settings_readers.h"
+#include "scene/text_files.h"
 
 namespace luz {
 namespace {
@@ -182,29 +180,11 @@ SceneText read_scene_text(const std::string& source) {
         return {std::string(demo->json), source, ""};
     }
 
-    if (const TextReader& from = file_source()) {  // under mpirun: what rank 0 read
-        std::string reason;
-        std::optional<std::string> text = from(source, reason);
-        if (!text) throw InputError(source + ": cannot read: " + reason);
-        return {std::move(*text), source, std::filesystem::path(source).parent_path().string()};
-    }
-    std::error_code ec;
-    if (std::filesystem::is_directory(source, ec)) {
-        throw InputError(source + ": cannot read: is a directory");
-    }
-    std::FILE* f = std::fopen(source.c_str(), "rb");
-    if (!f) throw InputError(source + ": cannot read: " + std::strerror(errno));
-    std::string text;
-    char buffer[1 << 16];
-    std::size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) text.append(buffer, n);
-    const bool failed = std::ferror(f) != 0;
-    const int err = errno;
-    std::fclose(f);
-    if (failed) throw InputError(source + ": cannot read: " + std::strerror(err));
-    if (file_observer()) file_observer()(source, text);
-
-    return {std::move(text), source, std::filesystem::path(source).parent_path().string()};
+    // From disk (a regular file, with a size bound), or under mpirun what rank 0 read.
+    std::string reason;
+    std::optional<std::string> text = read_text_file(source, reason);
+    if (!text) throw InputError(source + ": cannot read: " + reason);
+    return {std::move(*text), source, std::filesystem::path(source).parent_path().string()};
 }
 
 SceneDesc load_scene(const std::string& source, const std::vector<Override>& overrides) {
