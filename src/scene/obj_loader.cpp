@@ -19,6 +19,8 @@
 #include <stdexcept>
 #include <streambuf>
 
+#include "scene/message_text.h"
+
 namespace luz {
 namespace {
 
@@ -89,11 +91,6 @@ class Tokens {
     std::string_view rest_;
 };
 
-std::string quoted(std::string_view s) {
-    if (s.size() > 40) return "\"" + std::string(s.substr(0, 37)) + "...\"";
-    return "\"" + std::string(s) + "\"";
-}
-
 /// A number token as a float: the whole token must be a number, finite, in float range.
 float read_number(std::string_view token, const std::string& file, size_t line,
                   std::string_view statement) {
@@ -108,16 +105,16 @@ float read_number(std::string_view token, const std::string& file, size_t line,
     const std::string where = std::string(statement) + ": ";
     if (t.empty() || t[0] == '+' || ptr != t.data() + t.size() ||
         (ec != std::errc() && ec != std::errc::result_out_of_range)) {
-        fail_at(file, line, where + "malformed number " + quoted(token));
+        fail_at(file, line, where + "malformed number " + quote(token));
     }
     if (ec == std::errc::result_out_of_range) {
         // from_chars leaves d alone: strtod tells overflow (±HUGE_VAL) from underflow (≈ 0)
         d = std::strtod(std::string(t).c_str(), nullptr);
-        if (std::isinf(d)) fail_at(file, line, where + "number out of range " + quoted(token));
+        if (std::isinf(d)) fail_at(file, line, where + "number out of range " + quote(token));
     }
-    if (!std::isfinite(d)) fail_at(file, line, where + "not a finite number " + quoted(token));
+    if (!std::isfinite(d)) fail_at(file, line, where + "not a finite number " + quote(token));
     if (!(std::fabs(d) <= std::numeric_limits<float>::max())) {
-        fail_at(file, line, where + "number out of float range " + quoted(token));
+        fail_at(file, line, where + "number out of float range " + quote(token));
     }
     return static_cast<float>(d);
 }
@@ -131,7 +128,7 @@ int read_numbers(Tokens& tokens, float* out, int min_count, int max_count, const
         if (n == max_count) {
             fail_at(file, line,
                     std::string(statement) + ": expected at most " + std::to_string(max_count) +
-                        " numbers, got more (" + quoted(token) + ")");
+                        " numbers, got more (" + quote(token) + ")");
         }
         out[n++] = read_number(token, file, line, statement);
     }
@@ -161,13 +158,13 @@ void check_index(std::string_view s, size_t count, const char* what, const char*
     if (number && in_range) return;  // the usual case, without building any message
     const std::string where = std::string(statement) + ": ";
     if (!number) {
-        fail_at(file, line, where + "malformed vertex reference " + quoted(token));
+        fail_at(file, line, where + "malformed vertex reference " + quote(token));
     }
     if (k == 0) {
-        fail_at(file, line, where + "index 0 in " + quoted(token) + " (OBJ indices start at 1)");
+        fail_at(file, line, where + "index 0 in " + quote(token) + " (OBJ indices start at 1)");
     }
     fail_at(file, line,
-            where + std::string(what) + " index " + std::to_string(k) + " in " + quoted(token) +
+            where + std::string(what) + " index " + std::to_string(k) + " in " + quote(token) +
                 " out of range: " + std::to_string(count) + " " + (count == 1 ? what : whats) +
                 " defined before this line");
 }
@@ -182,7 +179,7 @@ void check_reference(std::string_view token, const Counts& c, const std::string&
         const size_t slash = token.find('/', start);
         if (n == 3) {
             fail_at(file, line,
-                    std::string(statement) + ": malformed vertex reference " + quoted(token) +
+                    std::string(statement) + ": malformed vertex reference " + quote(token) +
                         " (expected v, v/vt, v/vt/vn or v//vn)");
         }
         parts[n++] = token.substr(start, slash == std::string_view::npos ? slash : slash - start);
@@ -348,7 +345,7 @@ std::vector<Material> scan_mtl(std::string_view text, const std::string& file,
             std::string_view extra;
             if (token.empty() || ec != std::errc() || ptr != token.data() + token.size() ||
                 tokens.next(extra)) {
-                fail_at(file, n, "illum: expected an integer, got " + quoted(line));
+                fail_at(file, n, "illum: expected an integer, got " + quote(line));
             }
         }
     }
