@@ -14,7 +14,8 @@
 #include "scene/cancel.h"       // CancelScope: a load, build or encoding stops with Cancelled
 #include "scene/demo_scenes.h"
 #include "scene/input_error.h"
-#include "scene/obj_loader.h"  // set_max_text_file_bytes(): the cap on a mesh file
+#include "scene/obj_loader.h"
+#include "scene/text_files.h"  // set_memory_limit(): the cap on what loading may use
 #include "scene/presets.h"
 #include "scene/scene_desc.h"
 #include "scene/scene_loader.h"

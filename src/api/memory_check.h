@@ -12,26 +12,30 @@ namespace luz {
 /// Bytes a render of W×H pixels needs: float image, depth, g-buffer and the 8-bit copy.
 uint64_t estimate_render_bytes(int width, int height);
 
-/// What a render of a scene needs, by part (estimates made before anything is allocated).
+/// What a render of a scene needs, by part (estimates made before anything is built).
 struct MemoryEstimate {
-    uint64_t image = 0;      ///< estimate_render_bytes(W, H)
-    uint64_t antialias = 0;  ///< adaptive: the (W+1)×(H+1) corner colours and the mask
-    uint64_t geometry = 0;   ///< tessellated shapes (zbuffer), meshes and the BVH
-    uint64_t total() const { return image + antialias + geometry; }
+    uint64_t image = 0;         ///< estimate_render_bytes(W, H) and the per-term images
+    uint64_t antialias = 0;     ///< adaptive: the (W+1)×(H+1) corner colours and the mask
+    uint64_t tessellation = 0;  ///< the zbuffer's triangles of curved shapes
+    uint64_t meshes = 0;        ///< mesh triangles: shared vertices, indices, BVH share
+    uint64_t objects = 0;       ///< every object's description, built shape and BVH share
+    uint64_t total() const { return image + antialias + tessellation + meshes + objects; }
 };
 
 /// The estimate for `desc` (its meshes already loaded): image; antialiasing (grid works in
 /// bounded tiles, adaptive keeps every pixel corner); ~2·t² triangles per curved shape at
 /// tessellation t in the zbuffer; per mesh triangle its share of vertices, indices and BVH;
-/// `aov_count` per-term images (SPEC §1.5) asked for besides the image.
+/// per object its description and built shape; `aov_count` per-term images (SPEC §1.5) asked
+/// for besides the image.
 MemoryEstimate estimate_memory(const SceneDesc& desc, int aov_count = 0);
 
 /// Half of the physical memory (or of the cgroup limit, when smaller).
 uint64_t default_memory_limit();
 
 /// Throws InputError naming the scene and the key of the largest part (`image.width`,
-/// `render.tessellation` or `objects.N.file`) when the render needs
-/// more than `limit` bytes (default_memory_limit() when not given).
+/// `render.tessellation`, `objects.N.file` for one large mesh, `objects` for many meshes or
+/// objects) when the render needs more than `limit` bytes (default_memory_limit() when not
+/// given). The scene's JSON was bounded while it was parsed (scene/json_text.h).
 void check_memory(const SceneDesc& desc, std::optional<uint64_t> limit = std::nullopt,
                   int aov_count = 0);
 

@@ -65,7 +65,15 @@ void add_render_options(CLI::App& cmd, RenderArgs& o) {
                    "refuse images that need more memory than this (e.g. 2G; default: half "
                    "of physical memory)")
         ->type_name("BYTES")
-        ->transform(CLI::AsSizeValue(false));
+        ->transform(CLI::AsSizeValue(false))
+        // transforms run last added first: this sees the text before AsSizeValue wraps "-1"
+        ->transform(CLI::Validator(
+            [](std::string& text) {
+                const std::size_t first = text.find_first_not_of(" \t");
+                if (first == std::string::npos || text[first] != '-') return std::string();
+                return "must not be negative, got " + text;
+            },
+            "", ""));
 }
 
 std::vector<Override> overrides_of(const RenderArgs& o) {

@@ -99,7 +99,7 @@ int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
 
     // 2. The scene, with --set and then the options applied; one validation names the key, for
     //    every frame of an animation. A mesh file may take a quarter of the memory limit.
-    set_max_text_file_bytes((o.max_memory ? *o.max_memory : default_memory_limit()) / 4);
+    set_memory_limit(o.max_memory ? *o.max_memory : default_memory_limit());
     InputFileRecorder inputs;
     const Animation animation = Animation::load(o.scene, overrides);
     const SceneDesc& first = animation.first();

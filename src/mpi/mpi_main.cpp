@@ -138,7 +138,7 @@ extern "C" void on_stop_signal(int) { g_stop.store(true); }
 /// process; nothing is written.
 void follow_rank0(const RenderArgs& o) {
     const std::vector<Override> overrides = overrides_of(o);
-    set_max_text_file_bytes((o.max_memory ? *o.max_memory : default_memory_limit()) / 4);
+    set_memory_limit(o.max_memory ? *o.max_memory : default_memory_limit());
     const Animation animation = Animation::load(o.scene, overrides);
     const SceneDesc& first = animation.first();
     const FrameRange range = o.frames ? parse_frames(*o.frames, animation) : FrameRange{};

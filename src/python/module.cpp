@@ -247,8 +247,8 @@ PYBIND11_MODULE(_luz, m) {
     py::module_::import("atexit").attr("register")(
         py::cpp_function(&cancel_all_at_exit, py::name("_cancel_all_at_exit")));
 
-    // A mesh file may take a quarter of the memory limit, as `luz render` allows by default.
-    set_max_text_file_bytes(default_memory_limit() / 4);
+    // The memory limit `luz render` has by default (a scene or mesh file may take a quarter).
+    set_memory_limit(default_memory_limit());
 
     // Both exception classes are held for the life of the process.
     scene_error_type = PyErr_NewExceptionWithDoc(

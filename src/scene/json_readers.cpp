@@ -29,15 +29,10 @@ bool is_under(std::string_view path, std::string_view root) {
 }
 
 std::string describe(const Json& j) {
-    std::string s;
     if (j.is_object()) return "an object";
-    if (j.is_string()) {
-        s = "string " + j.dump();
-    } else {
-        s = j.dump(-1, ' ', false, Json::error_handler_t::replace);
-    }
-    if (s.size() > 60) s = s.substr(0, 57) + "...";
-    return s;
+    if (j.is_string()) return "string " + quote(j.get_ref<const std::string&>());
+    if (j.is_array() && j.size() > 16) return "an array of " + std::to_string(j.size()) + " values";
+    return printable(j.dump(-1, ' ', false, Json::error_handler_t::replace), 57);
 }
 
 std::string comma_list(const std::vector<std::string_view>& names) {

@@ -11,6 +11,7 @@
 #include "math/vec3.h"
 #include "scene/json_text.h"
 #include "scene/limits.h"
+#include "scene/message_text.h"
 
 namespace luz::loader {
 
@@ -69,7 +70,7 @@ E read_enum(const Json& j, const std::string& path,
     for (const auto& [name, value] : table) {
         if (name == s) return value;
     }
-    fail(path, "unknown value \"" + s + "\" (allowed: " + allowed + ")");
+    fail(path, "unknown value " + quote(s) + " (allowed: " + allowed + ")");
 }
 
 /// An object whose keys must all be among `known`; gives access to the present ones. Its

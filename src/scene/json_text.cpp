@@ -1,41 +1,17 @@
-// JSON text parsing for the scene loader: nesting limit, syntax errors with line:column.
+// JSON text parsing for the scene loader: nesting limit, then the document built by
+// json_builder.h; every problem named at FILE:LINE:COLUMN.
 #include "scene/json_text.h"
 
 #include <algorithm>
 #include <utility>
 
 #include "scene/input_error.h"
+#include "scene/json_builder.h"
+#include "scene/message_text.h"
+#include "scene/text_files.h"
 
 namespace luz::loader {
 namespace {
-
-/// A SAX pass that only records where and why parsing failed (the DOM parser's exceptions do
-/// not all carry the position, e.g. number overflow).
-struct ErrorLocator : nlohmann::json_sax<Json> {
-    std::size_t position = 0;
-    std::string token, message;
-    int id = 0;
-    bool null() override { return true; }
-    bool boolean(bool) override { return true; }
-    bool number_integer(number_integer_t) override { return true; }
-    bool number_unsigned(number_unsigned_t) override { return true; }
-    bool number_float(number_float_t, const string_t&) override { return true; }
-    bool string(string_t&) override { return true; }
-    bool binary(binary_t&) override { return true; }
-    bool start_object(std::size_t) override { return true; }
-    bool key(string_t&) override { return true; }
-    bool end_object() override { return true; }
-    bool start_array(std::size_t) override { return true; }
-    bool end_array() override { return true; }
-    bool parse_error(std::size_t pos, const std::string& last_token,
-                     const nlohmann::detail::exception& ex) override {
-        position = pos;
-        token = last_token;
-        message = ex.what();
-        id = ex.id;
-        return false;
-    }
-};
 
 /// Line and column (1-based; columns count UTF-8 characters) of byte `offset` in `text`.
 std::pair<int, int> line_column(std::string_view text, std::size_t offset) {
@@ -92,32 +68,70 @@ std::size_t too_deep_at(std::string_view text) {
     return std::string_view::npos;
 }
 
-Json parse_text(std::string_view text, const std::string& file) {
-    if (const std::size_t at = too_deep_at(text); at != std::string_view::npos) {
-        const auto [line, column] = line_column(text, at);
-        throw InputError(file + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                         ": JSON nested deeper than " + std::to_string(kMaxJsonNesting) +
-                         " levels");
+namespace {
+
+/// "FILE:LINE:COLUMN" of byte `offset`.
+std::string at(const std::string& file, std::string_view text, std::size_t offset) {
+    const auto [line, column] = line_column(text, offset);
+    return printable(file) + ":" + std::to_string(line) + ":" + std::to_string(column);
+}
+
+/// nlohmann's syntax error message, its quoted token shortened.
+std::string syntax_message(const std::string& nlohmann_message) {
+    std::string what = strip_exception_prefix(nlohmann_message);
+    // "…; last read: 'TOKEN'": the token may be a whole unterminated string
+    const std::string marker = "; last read: '";
+    const std::size_t from = what.find(marker);
+    if (from != std::string::npos && what.size() > from + marker.size() && what.back() == '\'') {
+        const std::size_t token_at = from + marker.size();
+        const std::string_view token =
+            std::string_view(what).substr(token_at, what.size() - 1 - token_at);
+        what = what.substr(0, token_at) + printable(token, kMaxQuotedChars) + "'";
     }
-    try {
-        return Json::parse(text);
-    } catch (const Json::exception&) {
-        ErrorLocator locator;
-        Json::sax_parse(text, &locator);
-        // The position counts the characters read: the offending one is at position − 1. For a
-        // number overflow the position is just past the number: point at its start instead.
-        std::size_t offset = locator.position > 0 ? locator.position - 1 : 0;
-        std::string what = "JSON syntax error: " + strip_exception_prefix(locator.message);
-        if (locator.id == 406) {
-            offset = locator.position >= locator.token.size()
-                         ? locator.position - locator.token.size()
-                         : 0;
-            what = "number out of range: " + locator.token + " is not a finite number";
+    return what;
+}
+
+/// The one-line message for `p`.
+std::string problem_message(const JsonProblem& p, const std::string& file, std::string_view text) {
+    using Kind = JsonProblem::Kind;
+    switch (p.kind) {
+        case Kind::syntax:
+            return at(file, text, p.offset) + ": JSON syntax error: " + syntax_message(p.what);
+        case Kind::range:
+            return at(file, text, p.offset) +
+                   ": number out of range: " + printable(p.token, kMaxQuotedChars) +
+                   " is not a finite number";
+        case Kind::duplicate: {
+            const auto [line, column] = line_column(text, p.first);
+            return at(file, text, p.offset) + ": " + p.what + " (first at " + std::to_string(line) +
+                   ":" + std::to_string(column) + "): a key may appear once in an object";
         }
-        const auto [line, column] = line_column(text, offset);
-        throw InputError(file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " +
-                         what);
+        case Kind::nul:
+            return at(file, text, p.offset) + ": " + p.what;
+        case Kind::memory:
+            return at(file, text, p.offset) + ": the scene needs more memory than the " +
+                   bytes_text(memory_limit()) + " limit (--max-memory to change it): its " +
+                   bytes_text(text.size()) + " of JSON take more than that once parsed and read";
     }
+    return at(file, text, p.offset) + ": cannot parse";
+}
+
+}  // namespace
+
+Json parse_text(std::string_view text, const std::string& file) {
+    if (const std::size_t at_byte = too_deep_at(text); at_byte != std::string_view::npos) {
+        throw InputError(at(file, text, at_byte) + ": JSON nested deeper than " +
+                         std::to_string(kMaxJsonNesting) + " levels");
+    }
+    // The document may take two thirds of what the memory limit leaves besides the text: the
+    // scene's description is made while it is held (an object's takes about half its JSON's).
+    const uint64_t limit = memory_limit();
+    const uint64_t budget = limit > text.size() ? (limit - text.size()) / 3 * 2 : 0;
+    Json doc;
+    if (const std::optional<JsonProblem> p = build_json(text, doc, budget)) {
+        throw InputError(problem_message(*p, file, text));
+    }
+    return doc;
 }
 
 }  // namespace luz::loader

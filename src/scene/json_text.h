@@ -23,7 +23,10 @@ std::size_t too_deep_at(std::string_view text);
 /// nlohmann's message without its "[json.exception…] parse error at line…:" prefix.
 std::string strip_exception_prefix(std::string s);
 
-/// Parses JSON text; on failure throws InputError "FILE:LINE:COL: JSON syntax error: …".
+/// Parses JSON text; on failure throws InputError "FILE:LINE:COL: …": a syntax error, a number
+/// out of range, a key twice in one object (naming both places), a NUL character in a key or
+/// string, or a document that would take more than memory_limit() (scene/text_files.h) with the
+/// text.
 Json parse_text(std::string_view text, const std::string& file);
 
 }  // namespace luz::loader

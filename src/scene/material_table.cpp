@@ -2,9 +2,13 @@
 #include "scene/material_table.h"
 
 #include "scene/json_readers.h"
+#include "scene/message_text.h"
 
 namespace luz::loader {
 namespace {
+
+/// How many material names an "unknown material" message lists.
+constexpr std::size_t kNamesListed = 10;
 
 std::string preset_names() {
     std::string s;
@@ -26,7 +30,7 @@ Material read_material(const Json& j, const std::string& path) {
         const Preset* preset = find_preset(name);
         if (!preset) {
             fail(s.key("preset"),
-                 "unknown preset \"" + name + "\" (known: " + preset_names() + ")");
+                 "unknown preset " + quote(name) + " (known: " + preset_names() + ")");
         }
         m = preset->material;
     }
@@ -91,9 +95,17 @@ int MaterialTable::resolve(const Json& j, const std::string& path) {
             list_.push_back(m);
             return by_preset_[p];
         }
+        // the first few names defined (a scene may define thousands)
         std::string defined;
-        for (const auto& [n, i] : by_name_) defined += (defined.empty() ? "" : ", ") + n;
-        fail(path, "unknown material \"" + name + "\" (defined in materials: " +
+        std::size_t listed = 0;
+        for (const auto& [n, i] : by_name_) {
+            if (listed == kNamesListed) {
+                defined += " and " + std::to_string(by_name_.size() - listed) + " more";
+                break;
+            }
+            defined += (listed++ ? ", " : "") + printable(n, kMaxQuotedChars);
+        }
+        fail(path, "unknown material " + quote(name) + " (defined in materials: " +
                        (defined.empty() ? "none" : defined) + "; presets: " + preset_names() + ")");
     }
     if (j.is_object()) {

@@ -21,6 +21,7 @@
 #include <streambuf>
 
 #include "scene/cancel.h"
+#include "scene/message_text.h"
 
 namespace luz {
 namespace {
@@ -92,11 +93,6 @@ class Tokens {
     std::string_view rest_;
 };
 
-std::string quoted(std::string_view s) {
-    if (s.size() > 40) return "\"" + std::string(s.substr(0, 37)) + "...\"";
-    return "\"" + std::string(s) + "\"";
-}
-
 /// A number token as a float: the whole token must be a number, finite, in float range.
 float read_number(std::string_view token, const std::string& file, size_t line,
                   std::string_view statement) {
@@ -111,16 +107,16 @@ float read_number(std::string_view token, const std::string& file, size_t line,
     const std::string where = std::string(statement) + ": ";
     if (t.empty() || t[0] == '+' || ptr != t.data() + t.size() ||
         (ec != std::errc() && ec != std::errc::result_out_of_range)) {
-        fail_at(file, line, where + "malformed number " + quoted(token));
+        fail_at(file, line, where + "malformed number " + quote(token));
     }
     if (ec == std::errc::result_out_of_range) {
         // from_chars leaves d alone: strtod tells overflow (±HUGE_VAL) from underflow (≈ 0)
         d = std::strtod(std::string(t).c_str(), nullptr);
-        if (std::isinf(d)) fail_at(file, line, where + "number out of range " + quoted(token));
+        if (std::isinf(d)) fail_at(file, line, where + "number out of range " + quote(token));
     }
-    if (!std::isfinite(d)) fail_at(file, line, where + "not a finite number " + quoted(token));
+    if (!std::isfinite(d)) fail_at(file, line, where + "not a finite number " + quote(token));
     if (!(std::fabs(d) <= std::numeric_limits<float>::max())) {
-        fail_at(file, line, where + "number out of float range " + quoted(token));
+        fail_at(file, line, where + "number out of float range " + quote(token));
     }
     return static_cast<float>(d);
 }
@@ -134,7 +130,7 @@ int read_numbers(Tokens& tokens, float* out, int min_count, int max_count, const
         if (n == max_count) {
             fail_at(file, line,
                     std::string(statement) + ": expected at most " + std::to_string(max_count) +
-                        " numbers, got more (" + quoted(token) + ")");
+                        " numbers, got more (" + quote(token) + ")");
         }
         out[n++] = read_number(token, file, line, statement);
     }
@@ -164,13 +160,13 @@ void check_index(std::string_view s, size_t count, const char* what, const char*
     if (number && in_range) return;  // the usual case, without building any message
     const std::string where = std::string(statement) + ": ";
     if (!number) {
-        fail_at(file, line, where + "malformed vertex reference " + quoted(token));
+        fail_at(file, line, where + "malformed vertex reference " + quote(token));
     }
     if (k == 0) {
-        fail_at(file, line, where + "index 0 in " + quoted(token) + " (OBJ indices start at 1)");
+        fail_at(file, line, where + "index 0 in " + quote(token) + " (OBJ indices start at 1)");
     }
     fail_at(file, line,
-            where + std::string(what) + " index " + std::to_string(k) + " in " + quoted(token) +
+            where + std::string(what) + " index " + std::to_string(k) + " in " + quote(token) +
                 " out of range: " + std::to_string(count) + " " + (count == 1 ? what : whats) +
                 " defined before this line");
 }
@@ -185,7 +181,7 @@ void check_reference(std::string_view token, const Counts& c, const std::string&
         const size_t slash = token.find('/', start);
         if (n == 3) {
             fail_at(file, line,
-                    std::string(statement) + ": malformed vertex reference " + quoted(token) +
+                    std::string(statement) + ": malformed vertex reference " + quote(token) +
                         " (expected v, v/vt, v/vt/vn or v//vn)");
         }
         parts[n++] = token.substr(start, slash == std::string_view::npos ? slash : slash - start);
@@ -352,7 +348,7 @@ std::vector<Material> scan_mtl(std::string_view text, const std::string& file,
             std::string_view extra;
             if (token.empty() || ec != std::errc() || ptr != token.data() + token.size() ||
                 tokens.next(extra)) {
-                fail_at(file, n, "illum: expected an integer, got " + quoted(line));
+                fail_at(file, n, "illum: expected an integer, got " + quote(line));
             }
         }
     }
@@ -438,77 +434,6 @@ class MtlReader : public tinyobj::MaterialReader {
 };
 
 }  // namespace
-
-namespace {
-std::atomic<uint64_t> g_max_text_file_bytes{UINT64_MAX};
-}  // namespace
-
-void set_max_text_file_bytes(uint64_t bytes) { g_max_text_file_bytes.store(bytes); }
-
-namespace {
-TextReader& source_slot() {
-    static TextReader source;
-    return source;
-}
-}  // namespace
-
-void set_file_source(TextReader source) { source_slot() = std::move(source); }
-const TextReader& file_source() { return source_slot(); }
-
-namespace {
-FileObserver& observer_slot() {
-    static FileObserver observer;
-    return observer;
-}
-}  // namespace
-
-void set_file_observer(FileObserver observer) { observer_slot() = std::move(observer); }
-const FileObserver& file_observer() { return observer_slot(); }
-
-std::optional<std::string> read_text_file(const std::string& path, std::string& reason) {
-    if (const TextReader& source = file_source()) return source(path, reason);
-    std::optional<std::string> text = read_text_file_from_disk(path, reason);
-    if (text && file_observer()) file_observer()(path, *text);
-    return text;
-}
-
-std::optional<std::string> read_text_file_from_disk(const std::string& path, std::string& reason) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) {
-        reason = "is a directory";
-        return std::nullopt;
-    }
-    // before reading: not endless (/dev/zero, a pipe), not larger than the memory allows
-    const auto status = std::filesystem::status(path, ec);
-    if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
-        reason = "not a regular file";
-        return std::nullopt;
-    }
-    const uint64_t size = std::filesystem::file_size(path, ec);
-    if (!ec && size > g_max_text_file_bytes.load()) {
-        reason = "the file's " + std::to_string(size) + " bytes are more than the " +
-                 std::to_string(g_max_text_file_bytes.load()) +
-                 " a mesh file may have (a quarter of --max-memory)";
-        return std::nullopt;
-    }
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) {
-        reason = std::strerror(errno);
-        return std::nullopt;
-    }
-    std::string text;
-    char buffer[1 << 16];
-    size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) text.append(buffer, n);
-    const bool failed = std::ferror(f) != 0;
-    const int err = errno;
-    std::fclose(f);
-    if (failed) {
-        reason = std::strerror(err);
-        return std::nullopt;
-    }
-    return text;
-}
 
 MeshData parse_obj(std::string_view text, const std::string& file, bool with_materials,
                    const TextReader& read, std::vector<std::string>& warnings) {

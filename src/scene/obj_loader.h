@@ -2,47 +2,15 @@
 // light pass of our own that checks every number and index and names FILE:LINE on bad input.
 #pragma once
 
-#include <cstdint>
-#include <functional>
-#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "scene/input_error.h"
 #include "scene/mesh_data.h"
+#include "scene/text_files.h"
 
 namespace luz {
-
-/// Reads the file at `path` whole; on failure returns nullopt and sets `reason` (e.g. "No such
-/// file or directory").
-using TextReader =
-    std::function<std::optional<std::string>(const std::string& path, std::string& reason)>;
-
-/// Reads a file through the file source (below; the default TextReader): from disk, refusing
-/// what is not a regular file (a folder, /dev/zero, a pipe) and a file larger than
-/// set_max_text_file_bytes(), before reading.
-std::optional<std::string> read_text_file(const std::string& path, std::string& reason);
-
-/// read_text_file() from disk, whatever the file source.
-std::optional<std::string> read_text_file_from_disk(const std::string& path, std::string& reason);
-
-/// Where the loader reads every file it reads — the scene file, OBJ and MTL files: from disk
-/// (an empty source, the default) or from `source`: under mpirun, the other processes read
-/// the bytes rank 0 sent (src/mpi/). Process-wide:
-/// set it before loading, from one thread.
-void set_file_source(TextReader source);
-const TextReader& file_source();
-
-/// Called with every file the loader has read from disk (the scene file, OBJ and MTL files),
-/// as it was read: rank 0 under mpirun keeps them to send (src/mpi/). Empty: none.
-using FileObserver = std::function<void(const std::string& path, const std::string& text)>;
-void set_file_observer(FileObserver observer);
-const FileObserver& file_observer();
-
-/// The largest OBJ or MTL file read_text_file() reads (default: no limit); `luz render` sets a
-/// share of --max-memory, so that a mesh too large is refused rather than half-loaded.
-void set_max_text_file_bytes(uint64_t bytes);
 
 /// Parses the OBJ text of `file` (`file` labels messages and locates MTL files: `mtllib` names
 /// are relative to its folder; `read` reads them). Polygons are triangulated; `v`, `vn`, `f`,

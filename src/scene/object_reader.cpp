@@ -6,6 +6,7 @@
 
 #include "scene/embedded_files.h"
 #include "scene/json_readers.h"
+#include "scene/message_text.h"
 #include "scene/number_text.h"
 #include "scene/obj_loader.h"
 
@@ -58,7 +59,7 @@ ShapeType read_type(const Json& j, const std::string& path) {
     for (std::size_t i = 0; i < std::size(kShapeNames); ++i) {
         if (kShapeNames[i] == s) return static_cast<ShapeType>(i);
     }
-    fail(key, "unknown value \"" + s + "\" (allowed: " + names + ")");
+    fail(key, "unknown value " + quote(s) + " (allowed: " + names + ")");
 }
 
 /// Reads one key of the shape's table into `o` (absent: the default stays).
@@ -136,8 +137,8 @@ std::shared_ptr<const MeshData> MeshFiles::read_mesh(const std::string& file, bo
     std::string reason;
     const std::optional<std::string> text = read(file, reason);
     if (!text) {
-        throw InputError(scene_.source + ": " + path + ".file: cannot read " + file + ": " +
-                         reason);
+        throw InputError(printable(scene_.source) + ": " + path + ".file: cannot read " +
+                         printable(file) + ": " + reason);
     }
     return std::make_shared<const MeshData>(
         parse_obj(*text, file, with_materials, read, scene_.warnings));

@@ -2,11 +2,14 @@
 #include "scene/overrides.h"
 
 #include <cctype>
+#include <optional>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "scene/json_builder.h"
 #include "scene/json_readers.h"
+#include "scene/message_text.h"
 
 namespace luz {
 namespace loader {
@@ -41,13 +44,19 @@ Json override_value(const Override& o) {
         throw InputError(override_label(o) + ": JSON nested deeper than " +
                          std::to_string(kMaxJsonNesting) + " levels");
     }
-    try {
-        return Json::parse(o.json);
-    } catch (const Json::exception& e) {
-        if (is_bare_word(o.json)) return Json(o.json);
-        const std::string what = strip_exception_prefix(e.what());
-        if (e.id == 406) throw InputError(override_label(o) + ": number out of range: " + what);
-        throw InputError(override_label(o) + ": JSON syntax error: " + what);
+    Json value;
+    const std::optional<JsonProblem> p = build_json(o.json, value);
+    if (!p) return value;
+    switch (p->kind) {
+        case JsonProblem::Kind::syntax:
+            if (is_bare_word(o.json)) return Json(o.json);
+            throw InputError(override_label(o) +
+                             ": JSON syntax error: " + printable(strip_exception_prefix(p->what)));
+        case JsonProblem::Kind::range:
+            throw InputError(override_label(o) + ": number out of range: " +
+                             printable(p->token, kMaxQuotedChars) + " is not a finite number");
+        default:
+            throw InputError(override_label(o) + ": " + p->what);
     }
 }
 
@@ -60,7 +69,11 @@ std::vector<std::string> split_path(const Override& o) {
         const std::size_t dot = o.path.find('.', start);
         segments.push_back(o.path.substr(start, dot - start));
         if (segments.back().empty()) {
-            throw InputError(override_label(o) + ": empty segment in key path \"" + o.path + "\"");
+            throw InputError(override_label(o) + ": empty segment in key path " + quote(o.path));
+        }
+        if (segments.back().find('\0') != std::string::npos) {
+            throw InputError(override_label(o) + ": a NUL character (\\u0000) in key path " +
+                             quote(o.path));
         }
         if (dot == std::string::npos) break;
         start = dot + 1;
@@ -71,8 +84,8 @@ std::vector<std::string> split_path(const Override& o) {
 }  // namespace
 
 std::string override_label(const Override& o) {
-    if (o.origin == "--set") return "--set " + o.path + "=" + o.json;
-    return o.origin + " " + o.json;
+    if (o.origin == "--set") return "--set " + printable(o.path) + "=" + printable(o.json);
+    return o.origin + " " + printable(o.json);
 }
 
 std::string apply_override(Json& doc, const Override& o) {
@@ -97,7 +110,7 @@ std::string apply_override(Json& doc, const Override& o) {
         } else if (node->is_array()) {
             if (!is_index(seg)) {
                 throw InputError(override_label(o) + ": " + (at.empty() ? "the scene" : at) +
-                                 " is an array: \"" + seg + "\" is not an index");
+                                 " is an array: " + quote(seg) + " is not an index");
             }
             const std::size_t index = std::stoul(seg);
             if (index > node->size()) {
@@ -112,8 +125,8 @@ std::string apply_override(Json& doc, const Override& o) {
             node = &(*node)[index];
         } else {
             throw InputError(override_label(o) + ": " + (at.empty() ? "the scene" : at) + " is " +
-                             describe(*node) + ", not an object or array: cannot set \"" + seg +
-                             "\" in it");
+                             describe(*node) + ", not an object or array: cannot set " +
+                             quote(seg) + " in it");
         }
         at = here;
     }

@@ -4,10 +4,9 @@
 // the override) and the line:column or key path.
 #include "scene/scene_loader.h"
 
+#include <malloc.h>
+
 #include <algorithm>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <utility>
 
@@ -17,15 +16,25 @@
 #include "scene/demo_scenes.h"
 #include "scene/json_readers.h"
 #include "scene/material_table.h"
+#include "scene/message_text.h"
 #include "scene/obj_loader.h"
 #include "scene/object_reader.h"
 #include "scene/overrides.h"
 #include "scene/settings_readers.h"
+#include "scene/text_files.h"
 
 namespace luz {
 namespace {
 
 using namespace loader;
+
+/// Returns the pages the parsed document held to the system: its many small blocks, once
+/// freed, would otherwise stay resident beside the built scene (--max-memory counts them once).
+void give_back_free_memory() {
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
+}
 
 /// The document (overrides already applied) → SceneDesc, its camera turned by the orbit of
 /// `animation` at `frame`. Throws KeyError.
@@ -73,16 +82,18 @@ void blaming(const std::string& file, const std::vector<Override>& overrides,
             if (!e.path.empty() &&
                 (is_under(e.path, roots[i]) || (!e.scope.empty() && is_under(roots[i], e.scope)))) {
                 const bool same = e.path == o.path && o.origin == "--set";
-                throw InputError(override_label(o) + ": " + (same ? "" : e.path + ": ") + e.what);
+                throw InputError(override_label(o) + ": " + (same ? "" : printable(e.path) + ": ") +
+                                 e.what);
             }
         }
-        throw InputError(file + ": " + (e.path.empty() ? "" : e.path + ": ") + e.what);
+        throw InputError(printable(file) + ": " + (e.path.empty() ? "" : printable(e.path) + ": ") +
+                         e.what);
     }
 }
 
 /// The document with the user's overrides applied, and its animation.
 struct Document {
-    Json text;  ///< the file as parsed
+    Json text;  ///< the file as parsed: kept for an animation only (its frames start from it)
     Json doc;   ///< with the user's overrides applied
     std::vector<Override> overrides;
     std::vector<std::string> roots;  ///< per override: what it created or replaced
@@ -91,8 +102,7 @@ struct Document {
 
 Document read_document(std::string_view json_text, const std::string& file,
                        const std::vector<Override>& overrides) {
-    Document d{parse_text(json_text, file), {}, overrides, {}, {}};
-    d.doc = d.text;
+    Document d{{}, parse_text(json_text, file), overrides, {}, {}};
     d.roots.reserve(overrides.size());
     for (const Override& o : overrides) d.roots.push_back(apply_override(d.doc, o));
     blaming(file, d.overrides, d.roots, [&] {
@@ -100,6 +110,10 @@ Document read_document(std::string_view json_text, const std::string& file,
             d.animation = read_animation(d.doc["animation"]);
         }
     });
+    // Parsed twice only when animated: a large scene is held once.
+    if (!d.animation.keys.empty()) {
+        d.text = overrides.empty() ? d.doc : parse_text(json_text, file);
+    }
     return d;
 }
 
@@ -142,14 +156,19 @@ SceneDesc read_frame(const Document& d, const std::string& file, const std::stri
 SceneDesc parse_scene(std::string_view json_text, const std::string& file,
                       const std::string& base_dir, const std::vector<Override>& overrides,
                       MeshCache* meshes) {
-    const Document d = read_document(json_text, file, overrides);
-    MeshCache own;
-    if (!meshes) meshes = &own;
-    SceneDesc first = read_frame(d, file, base_dir, 0, meshes);
-    // Every frame is checked now, before any rendering (orbit alone changes nothing checked).
-    if (!d.animation.keys.empty()) {
-        for (int f = 1; f < d.animation.frames; ++f) read_frame(d, file, base_dir, f, meshes);
+    SceneDesc first;
+    {
+        const Document d = read_document(json_text, file, overrides);
+        MeshCache own;
+        if (!meshes) meshes = &own;
+        first = read_frame(d, file, base_dir, 0, meshes);
+        // Every frame is checked now, before any rendering (orbit alone changes nothing
+        // checked).
+        if (!d.animation.keys.empty()) {
+            for (int f = 1; f < d.animation.frames; ++f) read_frame(d, file, base_dir, f, meshes);
+        }
     }
+    give_back_free_memory();
     return first;
 }
 
@@ -179,34 +198,16 @@ SceneText read_scene_text(const std::string& source) {
             for (const DemoScene& d : demo_scenes()) {
                 known += (known.empty() ? "" : ", ") + std::string("demo:") + std::string(d.name);
             }
-            throw InputError(source + ": no such built-in scene (known: " + known + ")");
+            throw InputError(printable(source) + ": no such built-in scene (known: " + known + ")");
         }
         return {std::string(demo->json), source, ""};
     }
 
-    if (const TextReader& from = file_source()) {  // under mpirun: what rank 0 read
-        std::string reason;
-        std::optional<std::string> text = from(source, reason);
-        if (!text) throw InputError(source + ": cannot read: " + reason);
-        return {std::move(*text), source, std::filesystem::path(source).parent_path().string()};
-    }
-    std::error_code ec;
-    if (std::filesystem::is_directory(source, ec)) {
-        throw InputError(source + ": cannot read: is a directory");
-    }
-    std::FILE* f = std::fopen(source.c_str(), "rb");
-    if (!f) throw InputError(source + ": cannot read: " + std::strerror(errno));
-    std::string text;
-    char buffer[1 << 16];
-    std::size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) text.append(buffer, n);
-    const bool failed = std::ferror(f) != 0;
-    const int err = errno;
-    std::fclose(f);
-    if (failed) throw InputError(source + ": cannot read: " + std::strerror(err));
-    if (file_observer()) file_observer()(source, text);
-
-    return {std::move(text), source, std::filesystem::path(source).parent_path().string()};
+    // From disk (a regular file, with a size bound), or under mpirun what rank 0 read.
+    std::string reason;
+    std::optional<std::string> text = read_text_file(source, reason);
+    if (!text) throw InputError(printable(source) + ": cannot read: " + reason);
+    return {std::move(*text), source, std::filesystem::path(source).parent_path().string()};
 }
 
 SceneDesc load_scene(const std::string& source, const std::vector<Override>& overrides) {

@@ -180,7 +180,9 @@ std::vector<BadCase> bad_cases() {
     v.push_back(option_case("threads_negative", {"--threads", "-1"}, {"--threads"}));
     v.push_back(option_case("option_without_value", {"--width"}, {"--width"}));
     v.push_back(option_case("unknown_option", {"--frobnicate"}, {"--frobnicate"}));
-    v.push_back(option_case("over_memory_limit", {"--max-memory", "1000"},
+    v.push_back(option_case("max_memory_negative", {"--max-memory", "-1"},
+                            {"--max-memory", "must not be negative, got -1"}));
+    v.push_back(option_case("over_memory_limit", {"--max-memory", "1M"},
                             {"demo:primitives", "image.width", "800x600 needs"}));
     v.push_back(BadCase{"bad_output_extension",
                         {},
@@ -231,6 +233,20 @@ INSTANTIATE_TEST_SUITE_P(Table, BadInput, testing::ValuesIn(bad_cases()),
                          });
 
 TEST(BadInputTable, HasAtLeastThirtyCases) { EXPECT_GE(bad_cases().size(), 30u); }
+
+class LongInput : public TempDirTest {};
+
+TEST_F(LongInput, AValueOfTenMegabytesIsShortenedInTheMessage) {
+    write_file(dir_ / "s.json", R"({"objects": [{"type": "sphere", "material": ")" +
+                                    std::string(10485760, 'a') + "\"}]}");
+    const RunResult r = run_luz({"render", "s.json", "-o", "out.png"}, dir_);
+    EXPECT_EQ(r.status, 2) << r.err.substr(0, 300);
+    EXPECT_EQ(count_lines(r.err), 1);
+    EXPECT_NE(r.err.find("s.json: objects.0.material: unknown material \"aaaa"), std::string::npos)
+        << r.err.substr(0, 300);
+    EXPECT_NE(r.err.find("\" (10485760 characters)"), std::string::npos) << r.err.substr(0, 300);
+    EXPECT_LT(r.err.size(), 1000u);
+}
 
 class ExistingOutput : public TempDirTest {};
 

@@ -80,5 +80,48 @@ TEST_F(Limits, EndlessMeshFileIsRefused) {
               1.0);
 }
 
+/// A scene file of `n` spheres in a row (about 60 bytes of JSON each).
+void write_spheres(const std::filesystem::path& file, int n) {
+    std::ofstream s(file);
+    s << R"({"render": {"pipeline": "raytrace"}, "objects": [)";
+    for (int i = 0; i < n; ++i) {
+        s << (i ? ",\n" : "") << R"({"type": "sphere", "center": [)" << i << ", 0, -40]}";
+    }
+    s << "]}";
+}
+
+TEST_F(Limits, ManyObjectsCountAgainstMaxMemory) {
+    // 50 000 spheres: their JSON fits in 70 MB once parsed, the objects built do not
+    write_spheres(dir_ / "s.json", 50000);
+    refused({"render", "s.json", "--width", "16", "--height", "16", "--max-memory", "70M", "-o",
+             "out.png"},
+            {"s.json: objects: 50000 objects need", "70.0 MiB limit"});
+}
+
+TEST_F(Limits, AParsedSceneLargerThanMaxMemoryIsRefusedWhileParsing) {
+    write_spheres(dir_ / "s.json", 50000);
+    refused({"render", "s.json", "--width", "16", "--height", "16", "--max-memory", "20M", "-o",
+             "out.png"},
+            {"s.json:", "the scene needs more memory than the 20.0 MiB limit"});
+}
+
+TEST_F(Limits, ManyMeshesAreNamedAsTheCause) {
+    // 300 objects sharing one OBJ of 1000 triangles: no one mesh is the cause, nor tessellation
+    {
+        std::ofstream obj(dir_ / "m.obj");
+        for (int i = 0; i < 1000; ++i) obj << "v " << i << " 0 0\nv 0 " << i << " 0\nv 0 0 1\n";
+        for (int i = 0; i < 1000; ++i)
+            obj << "f " << 3 * i + 1 << ' ' << 3 * i + 2 << ' ' << 3 * i + 3 << '\n';
+    }
+    std::ofstream s(dir_ / "s.json");
+    s << R"({"objects": [)";
+    for (int i = 0; i < 300; ++i) s << (i ? "," : "") << R"({"type": "mesh", "file": "m.obj"})";
+    s << "]}";
+    s.close();
+    refused({"render", "s.json", "--width", "16", "--height", "16", "--max-memory", "40M", "-o",
+             "out.png"},
+            {"s.json: objects: 300 meshes (300000 triangles in all) need", "40.0 MiB limit"});
+}
+
 }  // namespace
 }  // namespace luz::test
