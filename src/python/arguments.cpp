@@ -152,7 +152,12 @@ std::string path_argument(py::handle path, const char* name) {
         throw py::type_error(std::string(name) + ": expected a path (str or os.PathLike), got " +
                              type_name(path));
     }
-    return py::module_::import("os").attr("fsdecode")(path).cast<std::string>();
+    std::string text = py::module_::import("os").attr("fsdecode")(path).cast<std::string>();
+    // the operating system would read the path only up to it: "d/a\0b.png" as "d/a"
+    if (text.find('\0') != std::string::npos) {
+        throw py::value_error(std::string(name) + ": the path contains a NUL character");
+    }
+    return text;
 }
 
 }  // namespace luz::python

@@ -34,7 +34,7 @@ std::optional<PixelRect> region_argument(pybind11::handle region);
 /// Raises ValueError naming region= when `r` is set and empty or outside `image`.
 void check_region_argument(const std::optional<PixelRect>& r, const ImageDesc& image);
 
-/// A path argument (str, bytes or os.PathLike) as a str.
+/// A path argument (str, bytes or os.PathLike) as a str; one holding a NUL raises ValueError.
 std::string path_argument(pybind11::handle path, const char* name);
 
 }  // namespace luz::python

@@ -1,4 +1,5 @@
-// Wavefront OBJ and MTL input (SPEC §2 `mesh`): tinyobjloader parses and triangulates, after a
+// Wavefront OBJ and MTL input (SPEC §2 `mesh`): tinyobjloader parses, scene/triangulate.h cuts
+// polygons into triangles, after a
 // light pass of our own that checks every number and index and names FILE:LINE on bad input.
 #pragma once
 

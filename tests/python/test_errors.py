@@ -160,6 +160,30 @@ def test_self_containing_and_deep_dicts_end(luz):
         luz.load(deep)
 
 
+def test_paths_and_keys_with_a_nul_are_bad_input(luz, tmp_path):
+    # the operating system would stop at the NUL: "d/a\0b.png" would write "d/a"
+    (tmp_path / "d").mkdir()
+    frame = luz.render("demo:primitives", width=8, height=6)
+    with pytest.raises(ValueError, match="path: the path contains a NUL character"):
+        frame.save(str(tmp_path / "d" / "a\0b.png"))
+    assert list((tmp_path / "d").iterdir()) == []
+    (tmp_path / "a").write_text('{"objects": [{"type": "sphere"}]}')
+    with pytest.raises(ValueError, match="cannot read: the path contains a NUL character"):
+        luz.load(str(tmp_path / "a\0b"))
+    # in a dict: the key and the reason, at its line:column
+    with pytest.raises(luz.SceneError, match=r'<dict>:1:2: key "objects\\u0000": a NUL'):
+        luz.load({"objects\0": []})
+    with pytest.raises(luz.SceneError, match=r'string "bunny.obj\\u0000x": a NUL'):
+        luz.load({"objects": [{"type": "mesh", "file": "bunny.obj\0x"}]})
+
+
+def test_long_values_are_shortened_in_messages(luz):
+    with pytest.raises(luz.SceneError) as e:
+        luz.load({"objects": [{"type": "a" * 10485760}]})
+    assert '"' + "a" * 40 + '\u2026" (10485760 characters)' in str(e.value)
+    assert len(str(e.value)) < 300
+
+
 def test_warnings_are_scene_warnings(luz, tmp_path):
     (tmp_path / "w.obj").write_text("mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
     (tmp_path / "w.json").write_text(json.dumps(

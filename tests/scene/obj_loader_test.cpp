@@ -97,6 +97,43 @@ TEST(ObjLoader, QuadsAndNgonsAreTriangulated) {
     EXPECT_NEAR(total_area(l), 3.0, 1e-5);
 }
 
+TEST(ObjLoader, LargeFacesAcrossGroupsAndMaterialsKeepTheirOrder) {
+    // a 300-gon (tinyobjloader counts corners in a byte), a concave hexagon, a quad and a
+    // triangle, with groups, objects and materials changing between them
+    std::string obj = "mtllib x.mtl\n";
+    for (int k = 0; k < 300; ++k) {
+        const double a = 2 * M_PI * k / 300;
+        obj += "v " + std::to_string(std::cos(a)) + " " + std::to_string(std::sin(a)) + " 0\n";
+    }
+    obj += "v 0 0 1\nv 2 0 1\nv 2 1 1\nv 1 1 1\nv 1 2 1\nv 0 2 1\n";  // 301–306: an L
+    obj += "g big\nusemtl red\nf";
+    for (int k = 1; k <= 300; ++k) obj += " " + std::to_string(k);
+    obj += "\ng ell\nusemtl blue\nf 301 302 303 304 305 306\no other\nf 301 302 303 306\n";
+    obj += "usemtl red\nf 301 302 306\n";
+    Files files;
+    files.text["m/x.mtl"] = "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n";
+    const MeshData m = parse(obj, nullptr, files);
+    // the 300-gon: up to 298 triangles (in float, corners in line are dropped) of material 0
+    double big = 0, ell = 0, rest = 0;
+    size_t t = 0;
+    for (; t < m.triangle_count() && m.material[t] == 0; ++t) big += triangle_area(m, t);
+    EXPECT_NEAR(big, 150 * std::sin(2 * M_PI / 300), 1e-4);
+    for (size_t k = 0; k < 4; ++k, ++t) {
+        ASSERT_LT(t, m.triangle_count());
+        EXPECT_EQ(m.material[t], 1);
+        ell += triangle_area(m, t);
+    }
+    EXPECT_NEAR(ell, 3.0, 1e-5);
+    for (size_t k = 0; k < 2; ++k, ++t) {
+        EXPECT_EQ(m.material[t], 1);  // a new object keeps the material
+        rest += triangle_area(m, t);
+    }
+    EXPECT_NEAR(rest, 3.0, 1e-5);  // (0,0) (2,0) (2,1) (0,2)
+    ASSERT_EQ(t + 1, m.triangle_count());
+    EXPECT_EQ(m.material[t], 0);
+    EXPECT_EQ(m.position[3 * t], 300u);
+}
+
 TEST(ObjLoader, NegativeIndicesAreRelative) {
     const MeshData a = parse(std::string(kSquare) + "f -4 -3 -2\nv 5 5 5\nf -1 -5 -4\n");
     EXPECT_EQ(a.position, (std::vector<uint32_t>{0, 1, 2, 4, 0, 1}));

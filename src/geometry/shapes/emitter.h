@@ -40,11 +40,7 @@ class Emitter {
         triangle(a, b, c);
         triangle(a, c, d);
     }
-    void reserve(size_t vertices, size_t triangles) {
-        out_.positions.reserve(out_.positions.size() + vertices);
-        out_.normals.reserve(out_.normals.size() + vertices);
-        out_.indices.reserve(out_.indices.size() + 3 * triangles);
-    }
+    void reserve(size_t vertices, size_t triangles) { out_.reserve_more(vertices, 3 * triangles); }
 
   private:
     const Transform& t_;

@@ -61,8 +61,7 @@ struct mesh {
             for (uint32_t i : m.indices) out.indices.push_back(base + i);
             return;
         }
-        out.positions.reserve(out.positions.size() + m.indices.size());
-        out.normals.reserve(out.normals.size() + m.indices.size());
+        out.reserve_more(m.indices.size(), m.indices.size());
         for (size_t t = 0; t < m.triangle_count(); ++t) {
             Vec3 p[3];
             m.vertices(t, p[0], p[1], p[2]);

@@ -1,0 +1,75 @@
+// OBJ and MTL text reading: numbers and FILE:LINE errors (see obj_text.h).
+#include "scene/obj_text.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+#include "scene/input_error.h"
+#include "scene/message_text.h"
+
+namespace luz::obj_text {
+
+std::string at(const std::string& file, size_t line) {
+    return file + ":" + std::to_string(line) + ": ";
+}
+
+[[noreturn]] void fail_at(const std::string& file, size_t line, const std::string& what) {
+    throw InputError(at(file, line) + what);
+}
+
+std::string_view without_bom(std::string_view text) {
+    if (text.size() >= 3 && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+    return text;
+}
+
+float read_number(std::string_view token, const std::string& file, size_t line,
+                  std::string_view statement) {
+    std::string_view t = token;
+    if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+    double d = 0;
+    const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), d);
+    if (ec == std::errc() && ptr == t.data() + t.size() && !t.empty() && t[0] != '+' &&
+        std::fabs(d) <= std::numeric_limits<float>::max()) {
+        return static_cast<float>(d);  // the usual case, without building any message
+    }
+    const std::string where = std::string(statement) + ": ";
+    if (t.empty() || t[0] == '+' || ptr != t.data() + t.size() ||
+        (ec != std::errc() && ec != std::errc::result_out_of_range)) {
+        fail_at(file, line, where + "malformed number " + quote(token));
+    }
+    if (ec == std::errc::result_out_of_range) {
+        // from_chars leaves d alone: strtod tells overflow (±HUGE_VAL) from underflow (≈ 0)
+        d = std::strtod(std::string(t).c_str(), nullptr);
+        if (std::isinf(d)) fail_at(file, line, where + "number out of range " + quote(token));
+    }
+    if (!std::isfinite(d)) fail_at(file, line, where + "not a finite number " + quote(token));
+    if (!(std::fabs(d) <= std::numeric_limits<float>::max())) {
+        fail_at(file, line, where + "number out of float range " + quote(token));
+    }
+    return static_cast<float>(d);
+}
+
+int read_numbers(Tokens& tokens, float* out, int min_count, int max_count, const std::string& file,
+                 size_t line, std::string_view statement) {
+    int n = 0;
+    std::string_view token;
+    while (tokens.next(token)) {
+        if (n == max_count) {
+            fail_at(file, line,
+                    std::string(statement) + ": expected at most " + std::to_string(max_count) +
+                        " numbers, got more (" + quote(token) + ")");
+        }
+        out[n++] = read_number(token, file, line, statement);
+    }
+    if (n < min_count) {
+        fail_at(file, line,
+                std::string(statement) + ": expected " +
+                    (min_count == max_count ? "" : "at least ") + std::to_string(min_count) +
+                    " number" + (min_count == 1 ? "" : "s") + ", got " + std::to_string(n));
+    }
+    return n;
+}
+
+}  // namespace luz::obj_text
