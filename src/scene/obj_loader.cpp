@@ -84,6 +84,21 @@ void check_reference(std::string_view token, const Counts& c, const std::string&
     if (n == 3) check_index(parts[2], c.vn, "normal", "normals", token, file, line, statement);
 }
 
+/// tinyobjloader's skin weights (unused here): "vw VERTEX JOINT WEIGHT JOINT WEIGHT …". A joint
+/// that is not a number in int range would be undefined behaviour in its conversion (found by
+/// fuzzing).
+void check_skin_weights(Tokens& tokens, const std::string& file, size_t line) {
+    std::string_view token;
+    tokens.next(token);  // the vertex: read by atoi, any text goes
+    while (tokens.next(token)) {
+        const float joint = read_number(token, file, line, "vw");
+        if (!(joint >= 0 && joint <= 2147483520.0f)) {  // the largest float below 2^31
+            fail_at(file, line, "vw: joint " + quote(token) + " out of range [0, 2147483647]");
+        }
+        if (tokens.next(token)) read_number(token, file, line, "vw");
+    }
+}
+
 /// What the checking pass learns about an OBJ file on the way.
 struct ObjScan {
     Counts counts;
@@ -129,6 +144,8 @@ ObjScan scan_obj(std::string_view text, const std::string& file) {
                             " vertices, got " + std::to_string(corners));
             }
             if (keyword == "f") scan.face_sizes.push_back(static_cast<uint32_t>(corners));
+        } else if (keyword == "vw") {
+            check_skin_weights(tokens, file, n);
         } else if (keyword == "mtllib") {
             std::string_view name;
             while (tokens.next(name)) scan.mtllib_line.emplace(std::string(name), n);
