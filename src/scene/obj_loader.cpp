@@ -186,8 +186,8 @@ class MtlReader : public tinyobj::MaterialReader {
         if (!text) {
             const auto it = scan_.mtllib_line.find(name);
             const size_t line = it != scan_.mtllib_line.end() ? it->second : 0;
-            warnings_.push_back(at(obj_file_, line) + "cannot read MTL file " + path + ": " +
-                                reason + "; using the default material");
+            warnings_.push_back(at(obj_file_, line) + "cannot read MTL file " + printable(path) +
+                                ": " + reason + "; using the default material");
             missing_ = true;
             return false;
         }
@@ -313,7 +313,7 @@ MeshData parse_obj(std::string_view text, const std::string& file, bool with_mat
         for (const tinyobj::material_t& t : tiny_materials) defined.insert(t.name);
         for (const auto& [name, line] : scan.usemtl_line) {
             if (!defined.count(name)) {
-                warnings.push_back(at(file, line) + "usemtl " + name +
+                warnings.push_back(at(file, line) + "usemtl " + printable(name, kMaxQuotedChars) +
                                    ": no such material in the MTL files; its faces use the "
                                    "default material");
             }
