@@ -87,6 +87,21 @@ void check_reference(std::string_view token, const Counts& c, const std::string&
     if (n == 3) check_index(parts[2], c.vn, "normal", "normals", token, file, line, statement);
 }
 
+/// tinyobjloader's skin weights (unused here): "vw VERTEX JOINT WEIGHT JOINT WEIGHT …". A joint
+/// that is not a number in int range would be undefined behaviour in its conversion (found by
+/// fuzzing).
+void check_skin_weights(Tokens& tokens, const std::string& file, size_t line) {
+    std::string_view token;
+    tokens.next(token);  // the vertex: read by atoi, any text goes
+    while (tokens.next(token)) {
+        const float joint = read_number(token, file, line, "vw");
+        if (!(joint >= 0 && joint <= 2147483520.0f)) {  // the largest float below 2^31
+            fail_at(file, line, "vw: joint " + quote(token) + " out of range [0, 2147483647]");
+        }
+        if (tokens.next(token)) read_number(token, file, line, "vw");
+    }
+}
+
 /// What the checking pass learns about an OBJ file on the way.
 struct ObjScan {
     Counts counts;
@@ -133,6 +148,8 @@ ObjScan scan_obj(std::string_view text, const std::string& file) {
                             " vertices, got " + std::to_string(corners));
             }
             if (keyword == "f") scan.face_sizes.push_back(static_cast<uint32_t>(corners));
+        } else if (keyword == "vw") {
+            check_skin_weights(tokens, file, n);
         } else if (keyword == "mtllib") {
             std::string_view name;
             while (tokens.next(name)) scan.mtllib_line.emplace(std::string(name), n);
@@ -188,8 +205,8 @@ class MtlReader : public tinyobj::MaterialReader {
         if (!text) {
             const auto it = scan_.mtllib_line.find(name);
             const size_t line = it != scan_.mtllib_line.end() ? it->second : 0;
-            warnings_.push_back(at(obj_file_, line) + "cannot read MTL file " + path + ": " +
-                                reason + "; using the default material");
+            warnings_.push_back(at(obj_file_, line) + "cannot read MTL file " + printable(path) +
+                                ": " + reason + "; using the default material");
             missing_ = true;
             return false;
         }
@@ -317,7 +334,7 @@ MeshData parse_obj(std::string_view text, const std::string& file, bool with_mat
         for (const tinyobj::material_t& t : tiny_materials) defined.insert(t.name);
         for (const auto& [name, line] : scan.usemtl_line) {
             if (!defined.count(name)) {
-                warnings.push_back(at(file, line) + "usemtl " + name +
+                warnings.push_back(at(file, line) + "usemtl " + printable(name, kMaxQuotedChars) +
                                    ": no such material in the MTL files; its faces use the "
                                    "default material");
             }

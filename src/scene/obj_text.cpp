@@ -12,7 +12,7 @@
 namespace luz::obj_text {
 
 std::string at(const std::string& file, size_t line) {
-    return file + ":" + std::to_string(line) + ": ";
+    return printable(file) + ":" + std::to_string(line) + ": ";
 }
 
 [[noreturn]] void fail_at(const std::string& file, size_t line, const std::string& what) {

@@ -311,6 +311,22 @@ TEST(ObjLoader, UnknownUsemtlWarns) {
               "default material");
 }
 
+TEST(ObjLoader, LongNamesAreShortenedInWarnings) {
+    const std::string name(10485760, 'n');
+    Files files;
+    files.text["m/x.mtl"] = "newmtl gold\nKd 1 1 0\n";
+    std::vector<std::string> w;
+    parse("mtllib x.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl " + name + "\nf 1 2 3\n", &w, files);
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_EQ(w[0], "m/x.obj:5: usemtl " + std::string(40, 'n') +
+                        "\xE2\x80\xA6 (10485760 characters): no such material in the MTL files; "
+                        "its faces use the default material");
+    parse("mtllib " + name + "\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", &w, files);
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_LT(w[0].size(), 400u);
+    EXPECT_THAT(w[0], HasSubstr("characters): No such file or directory"));
+}
+
 TEST(ObjLoader, MaterialsAreNotReadWhenTheObjectNamesOne) {
     std::vector<std::string> w;
     const MeshData m = parse(kTwoFaces, &w, {}, /*with_materials=*/false);
