@@ -15,11 +15,11 @@
 #include "scene/demo_scenes.h"
 #include "scene/input_error.h"
 #include "scene/obj_loader.h"
-#include "scene/text_files.h"  // set_memory_limit(): the cap on what loading may use
 #include "scene/presets.h"
 #include "scene/scene_desc.h"
 #include "scene/scene_loader.h"
 #include "scene/scene_writer.h"  // write_scene(): a description back to JSON
+#include "scene/text_files.h"    // set_memory_limit(): the cap on what loading may use
 
 namespace luz {
 

@@ -19,7 +19,8 @@ struct RenderStats {
     uint64_t bvh_bytes = 0;        ///< nodes and primitives (in leaf order)
     /// The share of ray-tracing time spent in intersection, measured on a sample: timers around
     /// the scene queries of 1 primary sample in 256 (the reference, render/whitted.h) or of the
-    /// batches holding one (render/batch_tracer.h), and around those whole samples or batches. Share = intersect_sampled_seconds / sampled_seconds.
+    /// batches holding one (render/batch_tracer.h), and around those whole samples or batches.
+    /// Share = intersect_sampled_seconds / sampled_seconds.
     double intersect_sampled_seconds = 0, sampled_seconds = 0;
     uint64_t peak_memory_bytes = 0;
     /// --region X0,Y0,X1,Y1 (SPEC §3): the rectangle rendered; all 0 for the whole image.
