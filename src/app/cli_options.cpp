@@ -74,6 +74,14 @@ void add_render_options(CLI::App& cmd, RenderArgs& o) {
                 return "must not be negative, got " + text;
             },
             "", ""));
+    cmd.footer(
+        "SCENE is a scene file or demo:NAME (see `luz scenes`). Options that name a scene key "
+        "override it and are checked like it.\n"
+        "Exit status: 0 success; 2 bad input (one line naming the file and the place); 1 any "
+        "other failure; 130/143 interrupted by SIGINT/SIGTERM (nothing written).\n"
+        "Environment: LUZ_CHECKPOINT_SECONDS, the --checkpoint interval (default 10); "
+        "LUZ_MPI_TIMEOUT under mpirun.\n"
+        "Every option, output and message: docs/CLI.md; every scene key: docs/SCENES.md.");
 }
 
 std::vector<Override> overrides_of(const RenderArgs& o) {
