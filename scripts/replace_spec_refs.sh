@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Replaces the code's references to the old contract ("SPEC §1.1" …) by the docs/ page that now
-# holds it, following docs/notes/spec_refs.tsv (old text TAB new text, applied in file order).
+# Replaces the code's references to the old contract ("SPEC §1.1" …) and to README sections by
+# the docs/ page that now holds them, following docs/notes/spec_refs.tsv (old text TAB new text,
+# applied in file order).
 # Usage: scripts/replace_spec_refs.sh [DIR_OR_FILE …]   (default: src include tests bench scripts cmake)
 set -euo pipefail
 
@@ -42,7 +43,7 @@ while IFS= read -r -d '' file; do
         changed=$((changed + 1))
         [ "$clean" -eq 0 ] || clang-format -i "$file"
     fi
-done < <(grep -rlIZ -e 'SPEC' -e '§' -- "$@" || true)
+done < <(grep -rlIZ -e 'SPEC' -e '§' -e 'README' -- "$@" || true)
 
 echo "replace_spec_refs: $changed files changed"
 left="$(grep -rnI -e 'SPEC §' -e 'SPEC [0-9]' -e 'SPEC section' -- "$@" | grep -v "^$self:" || true)"
