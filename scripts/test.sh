@@ -30,6 +30,7 @@ if [ "${1:-}" = "--quick" ]; then
 fi
 
 scripts/setup.sh
+begin=$SECONDS
 
 cmake --preset release >/dev/null
 step "Release build (PGO + LTO)" cmake --build --preset release
@@ -41,3 +42,4 @@ if [ "${1:-}" != "--release-only" ]; then
   step "Sanitizer tests" env ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
     UBSAN_OPTIONS=print_stacktrace=1 ctest --preset sanitize -j "$jobs"
 fi
+echo "== scripts/test.sh: $((SECONDS - begin)) s"
