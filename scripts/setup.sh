@@ -8,7 +8,7 @@ packages=(cmake ninja-build g++ pkg-config nlohmann-json3-dev libcli11-dev libpn
           libsdl2-dev libimgui-dev libgl-dev xvfb xauth  # the viewer (luz view) and its tests
           python3-dev python3-numpy pybind11-dev  # the Python module (import luz), then its tests:
           python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib
-          python3-tqdm python3-ipywidgets
+          python3-tqdm python3-ipywidgets jupyter-nbconvert  # the notebook: examples/lecture.ipynb
           openmpi-bin libopenmpi-dev  # mpirun -np N luz render (luz-mpi) and its tests
           chromium)  # luz figures (python3-matplotlib, python3-numpy above) and its page test
 missing=()

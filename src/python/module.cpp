@@ -14,6 +14,7 @@
 #include "python/json_convert.h"
 #include "python/render_call.h"
 #include "python/scene_handle.h"
+#include "render/progress.h"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -367,4 +368,7 @@ PYBIND11_MODULE(_luz, m) {
           "height"_a = py::none(), "max_depth"_a = py::none(), "set"_a = py::none());
     m.def("scenes", &scenes_py, kScenesDoc);
     m.def("materials", &materials_py, kMaterialsDoc);
+    m.def("_progress_status", &luz::format_status, "fraction"_a, "elapsed"_a,
+          "The words of `luz render`'s progress line after its bar: \"0.04%  ETA 3h05m\" "
+          "(luz._progress.Bar shows them too).");
 }

@@ -22,33 +22,53 @@ std::string format_duration(double seconds) {
     return buf;
 }
 
-std::string format_progress(double fraction, double elapsed_s, int bar_width) {
+std::string format_percent(double fraction) {
     if (!(fraction >= 0)) fraction = 0;  // also catches NaN
     fraction = std::min(fraction, 1.0);
-    bar_width = std::max(bar_width, 1);
-    const int filled = static_cast<int>(std::floor(fraction * bar_width));
-    const int percent = static_cast<int>(std::floor(fraction * 100.0));
-
-    std::string line = "[";
-    line.append(static_cast<size_t>(filled), '#');
-    line.append(static_cast<size_t>(bar_width - filled), '-');
+    // Rounded down at the precision shown, so that 100 % means done and 0.00 % nothing done.
     char buf[32];
-    std::snprintf(buf, sizeof buf, "] %3d%%  ", percent);
-    line += buf;
+    const double percent = fraction * 100.0;
+    if (percent < 1.0) {
+        std::snprintf(buf, sizeof buf, "%.2f%%", std::floor(percent * 100.0) / 100.0);
+    } else if (percent < 10.0) {
+        std::snprintf(buf, sizeof buf, "%.1f%%", std::floor(percent * 10.0) / 10.0);
+    } else {
+        std::snprintf(buf, sizeof buf, "%3d%%", static_cast<int>(std::floor(percent)));
+    }
+    return buf;
+}
+
+std::string format_status(double fraction, double elapsed_s) {
+    if (!(fraction >= 0)) fraction = 0;
+    fraction = std::min(fraction, 1.0);
+    std::string line = format_percent(fraction) + "  ";
     if (fraction >= 1.0) {
         if (elapsed_s < 60) {
+            char buf[32];
             std::snprintf(buf, sizeof buf, "done in %.1fs", elapsed_s);
             line += buf;
         } else {
             line += "done in " + format_duration(elapsed_s);
         }
-    } else if (fraction >= 0.01 && elapsed_s >= 0.5) {
-        // time left, assuming the rest goes at the average rate so far
+    } else if (fraction > 0) {
+        // time left, assuming the rest goes at the average rate so far: known as soon as a
+        // pixel is done
         line += "ETA " + format_duration(elapsed_s * (1.0 - fraction) / fraction);
     } else {
-        line += "ETA --";  // too early to guess
+        line += "ETA --";  // nothing done yet
     }
     return line;
+}
+
+std::string format_progress(double fraction, double elapsed_s, int bar_width) {
+    if (!(fraction >= 0)) fraction = 0;  // also catches NaN
+    fraction = std::min(fraction, 1.0);
+    bar_width = std::max(bar_width, 1);
+    const int filled = static_cast<int>(std::floor(fraction * bar_width));
+    std::string line = "[";
+    line.append(static_cast<size_t>(filled), '#');
+    line.append(static_cast<size_t>(bar_width - filled), '-');
+    return line + "] " + format_status(fraction, elapsed_s);
 }
 
 bool stderr_is_terminal() { return isatty(STDERR_FILENO) == 1; }

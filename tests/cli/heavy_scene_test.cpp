@@ -1,12 +1,15 @@
 // Heavy scenes (scenes/exploding_glass.json: the ray tree grows as 2^depth, seconds a pixel):
 // Ctrl-C ends luz within a second however long one pixel takes, the progress bar moves before
 // the first tile is done, and luz says once that the tree explodes, naming render.min_weight.
+#include <poll.h>
+#include <pty.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <regex>
+#include <set>
 #include <thread>
 
 #include "cli/run_luz.h"
@@ -17,7 +20,57 @@ namespace {
 using Clock = std::chrono::steady_clock;
 const std::string kScene = LUZ_SOURCE_DIR "/scenes/exploding_glass.json";
 
+#if defined(__SANITIZE_ADDRESS__)
+constexpr double kSlowdown = 10;  // a Debug build under ASan
+#else
+constexpr double kSlowdown = 1;
+#endif
+
 class HeavyScene : public TempDirTest {};
+
+/// The distinct progress lines ("0.04%  ETA 3h05m", the words after the bar) that `luz args`
+/// draws on a terminal within `seconds`; stops reading at `enough` of them, then kills luz.
+std::set<std::string> progress_lines_within(const std::vector<std::string>& args,
+                                            const std::filesystem::path& cwd, double seconds,
+                                            size_t enough) {
+    std::string binary = LUZ_BINARY;
+    std::vector<std::string> all = {binary};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (const std::string& a : all) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    int master = -1;
+    const pid_t pid = forkpty(&master, nullptr, nullptr, nullptr);
+    if (pid < 0) return {};
+    if (pid == 0) {
+        if (chdir(cwd.c_str()) != 0) _exit(126);
+        execv(binary.c_str(), argv.data());
+        _exit(127);
+    }
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    const std::regex line(R"(\] ([^\r\x1b]*)\x1b\[K)");  // "\r[###---] WORDS\033[K"
+    std::string text;
+    std::set<std::string> lines;
+    char buf[4096];
+    while (lines.size() < enough && Clock::now() < end) {
+        pollfd fd{master, POLLIN, 0};
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now());
+        if (poll(&fd, 1, static_cast<int>(std::max<long>(left.count(), 0))) <= 0) continue;
+        const ssize_t n = read(master, buf, sizeof buf);
+        if (n <= 0) break;  // luz ended
+        text.append(buf, static_cast<size_t>(n));
+        lines.clear();
+        for (auto it = std::sregex_iterator(text.begin(), text.end(), line);
+             it != std::sregex_iterator(); ++it)
+            lines.insert((*it)[1]);
+    }
+    kill(pid, SIGKILL);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    close(master);
+    return lines;
+}
 
 TEST_F(HeavyScene, SigintStopsAnExplodingRayTreeWithinASecond) {
     std::string binary = LUZ_BINARY;
@@ -55,11 +108,11 @@ TEST_F(HeavyScene, ProgressMovesWithinATileAndTheExplosionIsNamedOnce) {
                                              "--set", "render.max_depth=17", "-o", "out.png"},
                                             dir_);
     ASSERT_EQ(r.status, 0) << r.out;
-    std::vector<int> percents;
-    const std::regex bar(R"(\] +([0-9]+)%)");
+    std::vector<double> percents;
+    const std::regex bar(R"(\] +([0-9.]+)%)");
     for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), bar);
          it != std::sregex_iterator(); ++it)
-        percents.push_back(std::stoi((*it)[1]));
+        percents.push_back(std::stod((*it)[1]));
     ASSERT_GE(percents.size(), 4u) << r.out;
     int between = 0;
     for (size_t k = 0; k < percents.size(); ++k) {
@@ -76,6 +129,18 @@ TEST_F(HeavyScene, ProgressMovesWithinATileAndTheExplosionIsNamedOnce) {
     EXPECT_EQ(r.out.find(warning, at + 1), std::string::npos) << "said once";
     EXPECT_NE(r.out.find("render.min_weight", at), std::string::npos);
     EXPECT_NE(r.out.find("render.max_depth 17", at), std::string::npos);
+}
+
+TEST_F(HeavyScene, ProgressSaysSomethingNewWithinSixSecondsAtFullSize) {
+    // 320×240 pixels of seconds each (max_depth 22): the share shown with decimals and the
+    // time left from the first pixel on give three different lines within the first 6 s
+    // (it was "0%  ETA --" for the first 40 s).
+    const std::set<std::string> lines =
+        progress_lines_within({"render", kScene, "-o", "out.png"}, dir_, 6 * kSlowdown, 3);
+    std::string all;
+    for (const std::string& l : lines) all += "\n  " + l;
+    EXPECT_GE(lines.size(), 3u) << "lines:" << all;
+    for (const std::string& l : lines) EXPECT_EQ(l.find("ETA --"), std::string::npos) << all;
 }
 
 TEST_F(HeavyScene, MinWeightMakesItCheapAndQuiet) {

@@ -25,19 +25,32 @@ std::string contents(std::FILE* f) {
 
 TEST(FormatProgress, BarPercentAndEta) {
     EXPECT_EQ(format_progress(0.42, 2.1, 10), "[####------]  42%  ETA 3s");
-    EXPECT_EQ(format_progress(0.0, 0.0, 4), "[----]   0%  ETA --");
+    EXPECT_EQ(format_progress(0.0, 0.0, 4), "[----] 0.00%  ETA --");
     EXPECT_EQ(format_progress(1.0, 5.04, 4), "[####] 100%  done in 5.0s");
     EXPECT_EQ(format_progress(1.0, 125, 4), "[####] 100%  done in 2m05s");
 }
 
-TEST(FormatProgress, NoEtaWhileTooEarlyToGuess) {
-    EXPECT_EQ(format_progress(0.001, 5.0, 4), "[----]   0%  ETA --");
-    EXPECT_EQ(format_progress(0.5, 0.1, 4), "[##--]  50%  ETA --");
-    EXPECT_EQ(format_progress(0.5, 10.0, 4), "[##--]  50%  ETA 10s");
+TEST(FormatProgress, BelowTenPercentWithADecimal) {
+    EXPECT_EQ(format_percent(0.004), "0.40%");
+    EXPECT_EQ(format_percent(0.0004), "0.04%");
+    EXPECT_EQ(format_percent(0.042), "4.2%");
+    EXPECT_EQ(format_percent(0.0999), "9.9%");  // rounded down: never 10.0 % before it is
+    EXPECT_EQ(format_percent(0.1), " 10%");
+    EXPECT_EQ(format_percent(0.9999), " 99%");
+    EXPECT_EQ(format_percent(0.00001), "0.00%");
+    EXPECT_EQ(format_progress(0.004, 1.0, 4), "[----] 0.40%  ETA 4m09s");
+}
+
+TEST(FormatProgress, TimeLeftAsSoonAsOnePixelIsDone) {
+    // One pixel of 320×240 done after 0.3 s: the rest at that rate, not "ETA --".
+    EXPECT_EQ(format_status(1.0 / 76800, 0.3), "0.00%  ETA 6h24m");
+    EXPECT_EQ(format_status(0.5, 0.1), " 50%  ETA 1s");
+    EXPECT_EQ(format_status(0.5, 10.0), " 50%  ETA 10s");
+    EXPECT_EQ(format_status(0.0, 5.0), "0.00%  ETA --");  // nothing done: nothing to go by
 }
 
 TEST(FormatProgress, ClampsOutOfRangeFractions) {
-    EXPECT_EQ(format_progress(-1.0, 1.0, 4), "[----]   0%  ETA --");
+    EXPECT_EQ(format_progress(-1.0, 1.0, 4), "[----] 0.00%  ETA --");
     EXPECT_EQ(format_progress(7.0, 1.0, 4), "[####] 100%  done in 1.0s");
 }
 
