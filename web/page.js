@@ -65,7 +65,7 @@ function control(path, value) {
   const inputs = values.map((v) => {
     const input = document.createElement('input');
     input.type = lim ? 'range' : 'number';
-    if (lim) { input.min = lim[0]; input.max = lim[1]; input.step = lim[2] ? 1 : (lim[1] - lim[0]) / 1000; }
+    if (lim) { input.min = lim[0]; input.max = lim[1]; input.step = lim[2] ? 1 : 'any'; }
     else input.step = 0.1;
     input.value = v;
     input.title = path;
@@ -139,6 +139,7 @@ worker.onmessage = (e) => {
     const sel = $('scenes');
     for (const [name, text] of m.demos) sel.add(new Option(name, name, false, name === state.source));
     readFragment();
+    showSource(state.source);
     render();
     return;
   }
@@ -163,8 +164,14 @@ worker.onmessage = (e) => {
 };
 
 // --- scenes: built-in, from disk (with meshes), from the URL fragment
+function showSource(source) {
+  const sel = $('scenes');
+  if (![...sel.options].some((o) => o.value === source)) sel.add(new Option(source, source));
+  sel.value = source;
+}
 function chooseSource(source) {
   state.source = source;
+  showSource(source);
   state.sets.clear();
   render();
 }
