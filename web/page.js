@@ -29,6 +29,8 @@ function showError(message) {
 
 function render() {
   state.done = false;
+  const overlay = $('rays');
+  overlay.getContext('2d').clearRect(0, 0, overlay.width, overlay.height);
   state.gen += 1;
   worker.postMessage({ type: 'render', source: state.source, term: state.term,
     sets: [...state.sets].map(([k, v]) => `${k}=${v}`) });
@@ -65,7 +67,9 @@ function control(path, value) {
   const inputs = values.map((v) => {
     const input = document.createElement('input');
     input.type = lim ? 'range' : 'number';
-    if (lim) { input.min = lim[0]; input.max = lim[1]; input.step = lim[2] ? 1 : 'any'; }
+    if (lim) { // the loader's slider range, widened to the scene's value when it lies outside
+      input.min = Math.min(lim[0], v); input.max = Math.max(lim[1], v); input.step = lim[2] ? 1 : 'any';
+    }
     else input.step = 0.1;
     input.value = v;
     input.title = path;
@@ -144,7 +148,9 @@ worker.onmessage = (e) => {
     return;
   }
   if (m.type === 'tree') {
-    $('tree').textContent = JSON.stringify(JSON.parse(m.json), null, 1);
+    const tree = JSON.parse(m.json);
+    $('tree').textContent = JSON.stringify(tree, null, 1);
+    drawRays(tree);
     if (state.treeWaiter) state.treeWaiter(m.json), state.treeWaiter = null;
     return;
   }
@@ -244,6 +250,43 @@ $('image').onwheel = (e) => {
   const c = camera(), k = e.deltaY > 0 ? 1.1 : 1 / 1.1;
   moveCamera(add(c.look_at, scale(sub(c.position, c.look_at), k)), c.look_at);
 };
+
+// --- a pixel's ray tree drawn over the image: each ray from its origin to its hit (or out of
+// the picture), projected with the camera of SPEC §1.3 (x = 2px/W − 1, y = 1 − 2py/H)
+function project(P) {
+  const c = camera(), W = state.scene.image.width, H = state.scene.image.height;
+  const w = norm(sub(c.position, c.look_at)), u = norm(cross(c.up || [0, 1, 0], w)), v = cross(w, u);
+  const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  const d = sub(P, c.position);
+  let x, y;
+  if (c.projection === 'orthographic') {
+    x = dot(d, u) / (c.view_height * W / H / 2);
+    y = dot(d, v) / (c.view_height / 2);
+  } else {
+    const z = -dot(d, w);
+    if (z <= 1e-6) return null;
+    const t = Math.tan((c.fov_y * Math.PI) / 360);
+    x = dot(d, u) / z / (t * W / H);
+    y = dot(d, v) / z / t;
+  }
+  return [(x + 1) * W / 2, (1 - y) * H / 2];
+}
+const RAY_COLOURS = { primary: '#fff', shadow: '#ff0', reflection: '#0ff', refraction: '#f0f' };
+function drawRays(tree) {
+  const overlay = $('rays'), image = $('image');
+  overlay.width = image.width; overlay.height = image.height;
+  const ctx = overlay.getContext('2d');
+  ctx.clearRect(0, 0, overlay.width, overlay.height);
+  if (!state.scene || !tree.nodes) return;
+  for (const n of tree.nodes) {
+    const far = n.point || add(n.origin, scale(n.direction, 1e3));
+    const a = n.kind === 'primary' ? [tree.pixel[0] + 0.5, tree.pixel[1] + 0.5] : project(n.origin);
+    const b = project(far);
+    if (!a || !b) continue;
+    ctx.strokeStyle = RAY_COLOURS[n.kind] || '#f80';
+    ctx.beginPath(); ctx.moveTo(...a); ctx.lineTo(...b); ctx.stroke();
+  }
+}
 
 // --- saving
 function download(blob, name) {
