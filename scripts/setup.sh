@@ -10,7 +10,8 @@ packages=(cmake ninja-build g++ pkg-config nlohmann-json3-dev libcli11-dev libpn
           python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib
           python3-tqdm python3-ipywidgets jupyter-nbconvert  # the notebook: examples/lecture.ipynb
           openmpi-bin libopenmpi-dev  # mpirun -np N luz render (luz-mpi) and its tests
-          chromium)  # luz figures (python3-matplotlib, python3-numpy above) and its page test
+          chromium  # luz figures (python3-matplotlib, python3-numpy above) and its page test
+          emscripten node-acorn)  # luz web (luz.html, web/) and its tests in chromium
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -15,6 +15,7 @@
 #include "app/signals.h"
 #include "app/standard_output.h"
 #include "app/view_command.h"
+#include "app/web_command.h"
 #include "luz/luz.h"
 
 #ifndef LUZ_VERSION
@@ -51,6 +52,9 @@ int run(int argc, char** argv, const FrameRenderer* render_frame) {
     CLI::App* figures = app.add_subcommand(
         "figures", "regenerate the lecture's figures into a folder with index.html");
     luz::add_figures_options(*figures, figures_options);
+    luz::WebOptions web_options;
+    CLI::App* web = app.add_subcommand("web", "write luz.html: luz in a web page, offline");
+    luz::add_web_options(*web, web_options);
 
     // CLI11 would only say "A subcommand is required" for a misspelt command
     const auto is_command = [&](const std::string& name) {
@@ -62,7 +66,7 @@ int run(int argc, char** argv, const FrameRenderer* render_frame) {
     if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1])) {
         print_error_line(
             std::string("luz: unknown command \"") + argv[1] +
-            "\" (expected render, view, figures, scenes or materials; see luz --help)");
+            "\" (expected render, view, figures, web, scenes or materials; see luz --help)");
         return 2;
     }
     try {
@@ -83,6 +87,7 @@ int run(int argc, char** argv, const FrameRenderer* render_frame) {
     }
     if (*view) return luz::run_view(view_options);
     if (*figures) return luz::run_figures(figures_options);
+    if (*web) return luz::run_web(web_options);
     return render_frame ? luz::run_render(render_options, *render_frame)
                         : luz::run_render(render_options);
 }

@@ -45,6 +45,7 @@ def main():
             return 1
         print(f"luz figures: {name} ({time.perf_counter() - t:.1f} s)", file=sys.stderr)
     common.copy_scene_files(ctx)
+    ctx.web = common.write_web_page(ctx)
     shutil.rmtree(os.path.join(a.out, "work"))
     page.write(ctx, time.perf_counter() - t0)
     return 0

@@ -17,10 +17,14 @@ namespace luz {
 /// its CPU affinity, which taskset, a container's cpuset or mpirun's binding may narrow).
 inline int resolve_threads(int requested) {
     if (requested > 0) return requested;
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+    return 1;  // WebAssembly without threads (the web page): web/serial_tbb runs the items
+#else
     cpu_set_t set;
     if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return CPU_COUNT(&set);
     const unsigned n = std::thread::hardware_concurrency();
     return n ? static_cast<int>(n) : 1;
+#endif
 }
 
 /// Calls body(i) for every i in [0, count), one item per task, on `threads` threads.

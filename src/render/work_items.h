@@ -27,6 +27,10 @@ struct TileCode {
     Write write;
     Read read;
 };
+// Spelled out for compilers without C++20's deduction for aggregates (Clang before 17:
+// the web build's Emscripten).
+template <class Render, class Write, class Read>
+TileCode(Render, Write, Read) -> TileCode<Render, Write, Read>;
 
 /// code.read(t, in); false when `in` is short (read_raw() throws).
 template <class Code>

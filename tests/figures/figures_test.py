@@ -70,6 +70,13 @@ def run(luz, out):
         fail("scenes/bunny.obj not copied")
     if re.search(r'(src|href)="(https?:)?//', page):
         fail("the page refers to an external URL")
+    # With the web page built into luz (luz web), every scene link has its live twin.
+    live = re.findall(r'class="live" href="(luz\.html#scene=[^"]+)"', page)
+    if os.path.isfile(os.path.join(out, "luz.html")):
+        if len(live) < len(re.findall(r'href="scenes/[^"]+\.json"', page)):
+            fail(f"only {len(live)} figure scenes link to luz.html")
+    elif live:
+        fail("links to luz.html, which was not written")
     for word in ("luz render", "medido / measured"):
         if word not in page:
             fail(f"index.html lacks {word!r}")

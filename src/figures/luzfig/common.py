@@ -8,6 +8,7 @@ import shlex
 import shutil
 import subprocess
 import time
+import urllib.parse
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -45,6 +46,7 @@ class Context:
         self.out = out
         self.figures = []
         self.renders = 0
+        self.web = False  # luz.html written beside the page (write_web_page)
         os.makedirs(os.path.join(out, "img"), exist_ok=True)
         os.makedirs(os.path.join(out, "work"), exist_ok=True)
 
@@ -207,6 +209,21 @@ def copy_scene_files(ctx):
         if n.endswith(".json"):
             shutil.copy(os.path.join(ctx.scenes, "figures", n), dst)
     shutil.copy(os.path.join(ctx.scenes, "bunny.obj"), os.path.join(ctx.out, "scenes"))
+
+
+def write_web_page(ctx):
+    """Writes luz.html (`luz web`, SPEC §6) into the output folder, so that each figure's scene
+    opens live in it; False when this luz was built without the page (the links are left out)."""
+    r = subprocess.run([ctx.luz, "web", "-o", ctx.out], capture_output=True, text=True)
+    return r.returncode == 0
+
+
+def web_link(ctx, scene):
+    """luz.html opened on `scene` (demo:NAME, or a scene file of the page, its JSON inlined)."""
+    if scene.startswith("demo:"):
+        return "luz.html#scene=" + urllib.parse.quote(scene, safe=":")
+    with open(os.path.join(ctx.out, scene), encoding="utf-8") as f:
+        return "luz.html#scene=" + urllib.parse.quote(f.read(), safe="")
 
 
 def fmt(x, digits=2):

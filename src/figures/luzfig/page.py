@@ -6,6 +6,8 @@ which the headless-browser test reads back."""
 import html
 import os
 
+from . import common
+
 STYLE = """
 body { font-family: sans-serif; max-width: 1400px; margin: 1em auto; padding: 0 1em;
        color: #222; background: #fafafa; }
@@ -71,6 +73,10 @@ def write(ctx, seconds):
         if f.scenes:
             links = ", ".join(f'<a href="{_e(s)}">{_e(s)}</a>' if not s.startswith("demo:")
                               else _e(s) for s in f.scenes)
+            if ctx.web:  # luz.html beside the page: each scene live
+                links += " — " + ", ".join(
+                    f'<a class="live" href="{_e(common.web_link(ctx, s))}">ao vivo / live</a>'
+                    for s in f.scenes)
             parts.append(f"<p>Cena / scene: {links}</p>")
         if f.commands:
             parts.append("<pre>" + "\n".join(_e(c) for c in f.commands) + "</pre>")
