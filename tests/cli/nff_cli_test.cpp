@@ -3,11 +3,13 @@
 // FILE:LINE line and nothing written.
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "cli/run_luz.h"
+#include "cli/signal_luz.h"
 
 namespace luz::test {
 namespace {
@@ -82,6 +84,28 @@ TEST_F(NffCli, BadNffIsExit2WithOneLineAndNothingWritten) {
     EXPECT_EQ(late.status, 2);
     EXPECT_EQ(count_lines(late.err), 1);
     EXPECT_NE(late.err.find("late.nff:1: s: before \"v\""), std::string::npos) << late.err;
+}
+
+TEST_F(NffCli, CheckpointResumesToTheBitsOfAnUninterruptedRender) {
+    const std::string gears = std::string(LUZ_SOURCE_DIR) + "/scenes/spd/gears.nff";
+    const std::vector<std::string> common = {"render", gears,  "--width", "640",       "--height",
+                                             "400",    "--aa", "grid",    "--samples", "4"};
+    std::vector<std::string> plain = common, resumed = common;
+    plain.insert(plain.end(), {"-o", "plain.png", "-q"});
+    resumed.insert(resumed.end(), {"-o", "resumed.png", "--checkpoint", "g.ckpt", "-q"});
+    ASSERT_EQ(run_luz(plain, dir_).status, 0);
+    // Interrupted after 0.3 s (unless it finished first: it takes about 1 s), then resumed.
+    const Signalled s = signal_luz(resumed, dir_, SIGINT, after_seconds(0.3));
+    EXPECT_TRUE(s.sent);
+    if (s.sent && s.status != 0) {
+        EXPECT_EQ(s.status, 130) << s.err;
+        EXPECT_TRUE(std::filesystem::exists(dir_ / "g.ckpt"));
+        EXPECT_FALSE(std::filesystem::exists(dir_ / "resumed.png"));
+        const RunResult r = run_luz(resumed, dir_);
+        ASSERT_EQ(r.status, 0) << r.err;
+    }
+    EXPECT_EQ(read_file(dir_ / "resumed.png"), read_file(dir_ / "plain.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "g.ckpt"));
 }
 
 }  // namespace
