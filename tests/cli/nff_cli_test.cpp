@@ -88,7 +88,7 @@ TEST_F(NffCli, BadNffIsExit2WithOneLineAndNothingWritten) {
 
 TEST_F(NffCli, CheckpointResumesToTheBitsOfAnUninterruptedRender) {
     const std::string gears = std::string(LUZ_SOURCE_DIR) + "/scenes/spd/gears.nff";
-    const std::vector<std::string> common = {"render", gears,  "--width", "640",       "--height",
+    const std::vector<std::string> common = {"render", gears,  "--width", "400",       "--height",
                                              "400",    "--aa", "grid",    "--samples", "4"};
     std::vector<std::string> plain = common, resumed = common;
     plain.insert(plain.end(), {"-o", "plain.png", "-q"});
