@@ -17,7 +17,8 @@ namespace luz {
 /// - sphere:   the unit sphere at the origin;
 /// - box:      the axis-aligned box [lo, hi];
 /// - cylinder: radius 1 around +z, z ∈ [0, 1], `caps` closes z = 0 and z = 1;
-/// - cone:     radius 1 − z around +z, z ∈ [0, 1] (apex at z = 1), `caps` closes z = 0;
+/// - cone:     radius 1 − (1 − apex)·z around +z, z ∈ [0, 1] (radius `apex` at z = 1: 0 is a
+///             full cone, > 0 a frustum), `caps` closes z = 0 and, for a frustum, z = 1;
 /// - torus:    major radius 1 around +z in the z = 0 plane, minor radius `minor` (< 1);
 /// - plane:    z = 0, outward normal +z, unbounded;
 /// - triangle: `vertices` as the keys give them; two-sided.
@@ -27,7 +28,8 @@ struct Shape {
     int material = 0;                  ///< index into SceneDesc::materials
     int object = 0;                    ///< index into SceneDesc::objects
     Transform transform;               ///< user transform · placement of the canonical shape
-    bool caps = false;                 ///< cylinder: both ends; cone: the base
+    bool caps = false;                 ///< cylinder: both ends; cone: the base (frustum: both)
+    float apex = 0;                    ///< cone: apex_radius / radius, in [0, 1)
     float minor = 0.25f;               ///< torus: minor_radius / major_radius
     Vec3 lo, hi;                       ///< box corners in object space
     Vec3 vertices[3];                  ///< triangle vertices in object space

@@ -46,6 +46,8 @@ constexpr Limit strictly_between(double lo, double hi, double ui_lo, double ui_h
 inline constexpr Limit kAnyNumber{};
 /// A shape's size (radius, height): > 0.
 inline constexpr Limit kShapeSize = above(0, 0.01, 100);
+/// A cone's apex_radius: ≥ 0 (0: a full cone; < radius is checked with the radius).
+inline constexpr Limit kApexRadius = at_least(0, 100);
 
 /// How a numeric key is written: a number, an integer, or a colour (a number or 3 numbers,
 /// each within the limit).

@@ -56,7 +56,8 @@ struct ObjectDesc {
     Vec3 base{0, 0, 0};
     Vec3 axis{0, 1, 0};
     float height = 1.0f;
-    bool caps = true;  ///< cylinder `caps`, cone `cap`
+    float apex_radius = 0.0f;  ///< cone: the radius at base + axis·height (0: a full cone)
+    bool caps = true;          ///< cylinder `caps`, cone `cap`
     // torus
     float major_radius = 1.0f, minor_radius = 0.25f;
     // plane
@@ -116,6 +117,7 @@ inline constexpr ShapeKey kShapeKeys[] = {
     {ShapeType::cone, "axis", ShapeKeyKind::direction, &ObjectDesc::axis},
     {ShapeType::cone, "radius", ShapeKeyKind::number, &ObjectDesc::radius, kShapeSize},
     {ShapeType::cone, "height", ShapeKeyKind::number, &ObjectDesc::height, kShapeSize},
+    {ShapeType::cone, "apex_radius", ShapeKeyKind::number, &ObjectDesc::apex_radius, kApexRadius},
     {ShapeType::cone, "cap", ShapeKeyKind::flag, &ObjectDesc::caps},
     {ShapeType::torus, "center", ShapeKeyKind::point, &ObjectDesc::center},
     {ShapeType::torus, "axis", ShapeKeyKind::direction, &ObjectDesc::axis},
@@ -164,6 +166,12 @@ inline std::optional<ShapeProblem> check_shape(const ObjectDesc& o) {
                 return ShapeProblem{"minor_radius", "must be < major_radius (" +
                                                         format_number(o.major_radius) + "), got " +
                                                         format_number(o.minor_radius)};
+            }
+            break;
+        case ShapeType::cone:
+            if (!(o.apex_radius < o.radius)) {
+                return ShapeProblem{"apex_radius", "must be < radius (" + format_number(o.radius) +
+                                                       "), got " + format_number(o.apex_radius)};
             }
             break;
         case ShapeType::triangle:

@@ -92,6 +92,12 @@ inline ObjectDesc cone_desc(bool cap = true) {
     o.caps = cap;
     return o;
 }
+/// A truncated cone: radius 0.6 at the base, 0.25 at the top.
+inline ObjectDesc frustum_desc(bool cap = true) {
+    ObjectDesc o = cone_desc(cap);
+    o.apex_radius = 0.25f;
+    return o;
+}
 inline ObjectDesc torus_desc() {
     ObjectDesc o;
     o.type = ShapeType::torus;
@@ -127,6 +133,7 @@ inline std::vector<NamedObject> all_objects() {
         {"sphere", sphere_desc(), true},         {"box", box_desc(), true},
         {"cylinder", cylinder_desc(true), true}, {"open_cylinder", cylinder_desc(false), false},
         {"cone", cone_desc(true), true},         {"open_cone", cone_desc(false), false},
+        {"frustum", frustum_desc(true), true},   {"open_frustum", frustum_desc(false), false},
         {"torus", torus_desc(), true},           {"triangle", triangle_desc(), false},
     };
 }

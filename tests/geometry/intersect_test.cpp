@@ -55,8 +55,10 @@ double object_sdf(const Shape& s, const Vec3& pf) {
                    std::min(std::max(dr, dz), 0.0);
         }
         case ShapeType::cone: {
-            const double side = (r - (1.0 - z)) / std::sqrt(2.0);
-            return s.caps ? std::max(side, -z) : side;
+            const double m = 1.0 - s.apex;  // the slope: radius 1 − m·z
+            const double side = (r - (1.0 - m * z)) / std::sqrt(1.0 + m * m);
+            if (!s.caps) return side;
+            return s.apex > 0 ? std::max({side, -z, z - 1.0}) : std::max(side, -z);
         }
         case ShapeType::torus:
             return std::hypot(r - 1.0, z) - s.minor;
@@ -104,17 +106,17 @@ SurfaceSample sample_surface(const Shape& s, std::mt19937& rng) {
         case ShapeType::cylinder:
         case ShapeType::cone: {
             const bool cone = s.type == ShapeType::cone;
-            const int caps = s.caps ? (cone ? 1 : 2) : 0;
+            const int caps = s.caps ? (cone && s.apex == 0 ? 1 : 2) : 0;
             const int pick = int(U(rng) * (2 + caps));  // the side twice as often
             if (pick >= 2) {
-                const float rr = 0.9f * std::sqrt(U(rng));
                 const float z = (pick == 2) ? 0.0f : 1.0f;
+                const float rr = 0.9f * std::sqrt(U(rng)) * (cone && z == 1 ? s.apex : 1.0f);
                 return {{rr * c, rr * sn, z}, {0, 0, z == 0 ? -1.0f : 1.0f}};
             }
             const float z = 0.1f + 0.8f * U(rng);
             if (!cone) return {{c, sn, z}, {c, sn, 0}};
-            const float rr = 1 - z;
-            return {{rr * c, rr * sn, z}, {c, sn, 1}};
+            const float m = 1 - s.apex, rr = 1 - m * z;
+            return {{rr * c, rr * sn, z}, {c, sn, m}};
         }
         case ShapeType::torus: {
             const float psi = 2 * float(pi) * U(rng);
@@ -518,10 +520,13 @@ std::vector<Tangent> tangent_rays(const Shape& s) {
             return {{"cyl_side", {1, -3, 0.5f}, {0, 1, 0}, {1, 0, 0}, 3},
                     {"cyl_along_side", {1, 0, -2}, {0, 0, 1}, {1, 0, 0}, 2},
                     {"cyl_rim", {-3, 0, 1}, {1, 0, 0}, {0, 0, 1}, 2}};
-        case ShapeType::cone:
-            // along a generator (the quadratic's a = 0) and across the side
-            return {{"cone_generator", {3, 0, -2}, {-1, 0, 1}, normalize(Vec3{1, 0, 1}), 2},
-                    {"cone_side", {-3, 0.5f, 0.5f}, {1, 0, 0}, {0, 1, 0}, 3}};
+        case ShapeType::cone: {
+            // along a generator x = 1 − k·z (the quadratic's a = 0) and across the side;
+            // k = 1 − apex is the slope
+            const float k = 1 - s.apex;
+            return {{"cone_generator", {1 + 2 * k, 0, -2}, {-k, 0, 1}, normalize(Vec3{1, 0, k}), 2},
+                    {"cone_side", {-3, 1 - 0.5f * k, 0.5f}, {1, 0, 0}, {0, 1, 0}, 3}};
+        }
         case ShapeType::torus:
             return {{"torus_top", {-3, 0, m}, {1, 0, 0}, {0, 0, 1}, 2},
                     {"torus_outer", {1 + m, -3, 0}, {0, 1, 0}, {1, 0, 0}, 3},

@@ -46,6 +46,16 @@ TEST(MakeShape, ConeHasItsRadiusAtTheBaseAndItsApexAtTheTop) {
     EXPECT_FALSE(make_shape(cylinder_desc(false), 0).caps);
 }
 
+TEST(MakeShape, FrustumHasItsApexRadiusAtTheTop) {
+    const ObjectDesc o = frustum_desc();
+    const Shape s = make_shape(o, 0);
+    EXPECT_FLOAT_EQ(s.apex, o.apex_radius / o.radius);
+    const Vec3 top = o.base + normalize(o.axis) * o.height;
+    expect_near(s.transform.point({0, 0, 1}), top);
+    EXPECT_NEAR(length(s.transform.point({s.apex, 0, 1}) - top), o.apex_radius, 1e-5f);
+    EXPECT_EQ(make_shape(cone_desc(), 0).apex, 0.0f);
+}
+
 TEST(MakeShape, SphereTorusPlaneBoxTriangle) {
     const ObjectDesc sphere = sphere_desc();
     const Shape s = make_shape(sphere, 0);

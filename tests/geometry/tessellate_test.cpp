@@ -69,7 +69,9 @@ TEST(Tessellate, OpenShapesAreOpenOnlyAtTheirRims) {
         SCOPED_TRACE(level);
         const Shape cyl = make_shape(cylinder_desc(false), 0);
         const Shape cone = make_shape(cone_desc(false), 0);
-        for (const auto& [s, rims] : {std::pair{cyl, 2}, std::pair{cone, 1}}) {
+        const Shape frustum = make_shape(frustum_desc(false), 0);
+        for (const auto& [s, rims] :
+             {std::pair{cyl, 2}, std::pair{cone, 1}, std::pair{frustum, 2}}) {
             int boundary = 0, more = 0;
             for (const auto& [e, n] : undirected_edges(tessellated(s, level))) {
                 boundary += (n == 1);
@@ -129,6 +131,8 @@ TEST(Tessellate, LevelIsSegmentsAroundAFullCircle) {
     EXPECT_EQ(tessellated(make_shape(cylinder_desc(false), 0), L).triangle_count(), size_t(2 * L));
     EXPECT_EQ(tessellated(make_shape(cone_desc(true), 0), L).triangle_count(), size_t(2 * L));
     EXPECT_EQ(tessellated(make_shape(cone_desc(false), 0), L).triangle_count(), size_t(L));
+    EXPECT_EQ(tessellated(make_shape(frustum_desc(true), 0), L).triangle_count(), size_t(4 * L));
+    EXPECT_EQ(tessellated(make_shape(frustum_desc(false), 0), L).triangle_count(), size_t(2 * L));
     // Torus tube: max(3, level/2) segments.
     EXPECT_EQ(tessellated(make_shape(torus_desc(), 0), 4).triangle_count(), size_t(2 * 4 * 3));
     // Below 3 the level is clamped to 3.
@@ -252,6 +256,23 @@ TEST(Tessellate, CylinderAndConeSideNormals) {
     EXPECT_EQ(apex_normals.size(), 24u);
 }
 
+TEST(Tessellate, FrustumSideNormalsAndTopRim) {
+    const ObjectDesc f = frustum_desc(false);
+    const Vec3 axis = normalize(f.axis), top = f.base + axis * f.height;
+    const TriangleMesh m = tessellated(make_shape(f, 0), 24);
+    // N·axis = (r − r′) / slant at every vertex; each vertex on the base rim or the top rim
+    const double dr = f.radius - f.apex_radius;
+    const float expected = static_cast<float>(dr / std::hypot(dr, double(f.height)));
+    for (size_t i = 0; i < m.positions.size(); ++i) {
+        EXPECT_NEAR(dot(m.normals[i], axis), expected, 1e-5f);
+        const float from_base = length(m.positions[i] - f.base);
+        const float from_top = length(m.positions[i] - top);
+        EXPECT_TRUE(std::fabs(from_base - f.radius) < 1e-5f ||
+                    std::fabs(from_top - f.apex_radius) < 1e-5f)
+            << i;
+    }
+}
+
 TEST(Tessellate, AnalyticAreas) {
     const double k = 1.7 * 1.7;  // the similarity transform's uniform scale, squared
     const Affine sim = user_transforms()[1].affine;
@@ -265,6 +286,8 @@ TEST(Tessellate, AnalyticAreas) {
         {cylinder_desc(false), 2 * pi * 0.5 * 2},
         {cone_desc(true), pi * 0.6 * std::hypot(0.6, 1.5) + pi * 0.36},
         {cone_desc(false), pi * 0.6 * std::hypot(0.6, 1.5)},
+        {frustum_desc(true), pi * 0.85 * std::hypot(0.35, 1.5) + pi * (0.36 + 0.0625)},
+        {frustum_desc(false), pi * 0.85 * std::hypot(0.35, 1.5)},
         {torus_desc(), 4 * pi * pi * 1.2 * 0.35},
         {triangle_desc(), 0.5 * 3.5},  // |(−1.5, −1, 3)| / 2
     };

@@ -74,6 +74,22 @@ TEST(SceneRoundTrip, EditedValuesTransformsAndSettings) {
     expect_round_trip("demo:primitives", edits, t.path);
 }
 
+TEST(SceneRoundTrip, FrustumKeepsItsApexRadius) {
+    // demo:primitives' cone (objects.4) made a truncated cone (SPEC §2: apex_radius)
+    TempFolder t;
+    const std::vector<Override> edits = {
+        {"image.width", "80"}, {"image.height", "60"}, {"objects.4.apex_radius", "0.2"}};
+    expect_round_trip("demo:primitives", edits, t.path);
+    const SceneDesc a = load_scene("demo:primitives", edits);
+    ASSERT_EQ(a.objects[4].type, ShapeType::cone);
+    EXPECT_FLOAT_EQ(a.objects[4].apex_radius, 0.2f);
+    const std::string saved = (t.path / "frustum.json").string();
+    write_scene(saved, a);
+    EXPECT_FLOAT_EQ(load_scene(saved).objects[4].apex_radius, 0.2f);
+    // a full cone is written with apex_radius 0 and read back as one
+    EXPECT_EQ(load_scene("demo:primitives").objects[4].apex_radius, 0.0f);
+}
+
 TEST(SceneRoundTrip, ReflectanceIsWrittenBack) {
     // SPEC §1.4: a saved scene keeps each material's curve, the metal presets' schlick included.
     TempFolder t;

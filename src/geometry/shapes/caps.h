@@ -1,4 +1,4 @@
-// Disc caps of the unit circle at a height z (cylinder ends, cone base): their ray hits in
+// Disc caps at a height z (cylinder ends, cone base, a frustum's top disc): their ray hits in
 // object space and their tessellation as a fan sharing the side's rim vertices.
 #pragma once
 
@@ -13,25 +13,26 @@ namespace luz::shapes {
 /// slips between side (z test) and cap (r test) by rounding.
 constexpr double cap_slack = 1e-9;
 
-/// Offers the hits of object ray (o, d) with the disc at z = 0 (part_cap0) and, if `both`, the
-/// disc at z = 1 (part_cap1).
-inline void hit_caps(const D3& o, const D3& d, bool both, Nearest& n) {
+/// Offers the hits of object ray (o, d) with the unit disc at z = 0 (part_cap0) and, if `both`,
+/// the disc of radius² `top_r2` at z = 1 (part_cap1).
+inline void hit_caps(const D3& o, const D3& d, bool both, Nearest& n, double top_r2 = 1.0) {
     if (d.z == 0) return;
     for (int k = 0; k < (both ? 2 : 1); ++k) {
         const double t = (k - o.z) / d.z;
         const double x = o.x + t * d.x, y = o.y + t * d.y;
-        if (x * x + y * y <= 1.0 + cap_slack) n.offer(t, k == 0 ? part_cap0 : part_cap1);
+        const double r2 = k == 0 ? 1.0 : top_r2;
+        if (x * x + y * y <= r2 + cap_slack) n.offer(t, k == 0 ? part_cap0 : part_cap1);
     }
 }
 
-/// A disc cap at height z of the unit circle, as a fan from its centre sharing the rim
-/// positions (the same Circle values) of the side; `up` is the outward normal's direction.
-inline void emit_cap(Emitter& e, const Circle& circle, float z, bool up) {
+/// A disc cap of radius r at height z, as a fan from its centre sharing the rim positions (the
+/// same Circle values times r) of the side; `up` is the outward normal's direction.
+inline void emit_cap(Emitter& e, const Circle& circle, float z, bool up, float r = 1.0f) {
     const int n = static_cast<int>(circle.c.size());
     const Vec3 nz{0, 0, up ? 1.0f : -1.0f};
     const uint32_t centre = e.vertex({0, 0, z}, nz);
     const uint32_t first = centre + 1;  // rim vertex j is first + j
-    for (int j = 0; j < n; ++j) e.vertex({circle.c[j], circle.s[j], z}, nz);
+    for (int j = 0; j < n; ++j) e.vertex({circle.c[j] * r, circle.s[j] * r, z}, nz);
     for (int j = 0; j < n; ++j) {
         const uint32_t a = first + j, b = first + (j + 1) % n;
         if (up)

@@ -1,5 +1,7 @@
-// Cone: radius 1 − z around +z, z ∈ [0, 1] in object space (apex at z = 1), placed from `base`
-// along `axis` by `radius` and `height`; `caps` (the `cap` key) closes the base (part_cap0).
+// Cone: radius 1 − (1 − k)·z around +z, z ∈ [0, 1] in object space (k = apex_radius / radius:
+// 0 is a full cone with its apex at z = 1, k > 0 a frustum with a disc of radius k at z = 1),
+// placed from `base` along `axis` by `radius` and `height`; `cap` closes the base (part_cap0)
+// and a frustum's top disc (part_cap1).
 #pragma once
 
 #include <cmath>
@@ -19,35 +21,42 @@ struct cone {
     static void place(const ObjectDesc& o, Shape& s) {
         set_transform(s, o, frame_along(o.axis, o.radius, o.radius, o.height, o.base));
         s.caps = o.caps;
+        s.apex = o.apex_radius / o.radius;
     }
 
     static Bounds3 bounds(const Shape& s) {
-        // The base rim and the apex.
+        // The base rim and the apex (a frustum: the top rim).
         const Affine& M = s.transform.world_from_object;
         const Vec3 U = column(M, 0), V = column(M, 1), W = column(M, 2);
         Bounds3 b = ellipse_bounds(origin(M), U, V);
-        b.expand(origin(M) + W);
+        if (s.apex > 0)
+            b.expand(ellipse_bounds(origin(M) + W, U * s.apex, V * s.apex));
+        else
+            b.expand(origin(M) + W);
         return pad(b);
     }
 
-    /// x² + y² = (1 − z)², z ∈ [0, 1]; the cap at z = 0.
+    /// x² + y² = (1 − m·z)², z ∈ [0, 1], with m = 1 − k the slope; the caps at z = 0 and (a
+    /// frustum) z = 1.
     static bool hit_object(const Shape& s, const Ray& ro, Nearest& n) {
         const D3 o = to_d3(ro.origin), d = to_d3(ro.direction);
-        // with w = 1 − z: x² + y² − w² = 0, w(t) = (1 − oz) − t·dz
-        const double w0 = 1.0 - o.z;
-        const double a = d.x * d.x + d.y * d.y - d.z * d.z;
-        const double b = o.x * d.x + o.y * d.y + w0 * d.z;
+        const double m = 1.0 - double(s.apex);
+        // with w = 1 − m·z: x² + y² − w² = 0, w(t) = (1 − m·oz) − t·m·dz
+        const double w0 = 1.0 - m * o.z, wd = m * d.z;
+        const double a = d.x * d.x + d.y * d.y - wd * wd;
+        const double b = o.x * d.x + o.y * d.y + w0 * wd;
         const double c = o.x * o.x + o.y * o.y - w0 * w0;
         const double disc = b * b - a * c;
         if (disc >= 0) {
             double r[2];
             quadratic_roots(a, b, c, disc, r[0], r[1]);  // a = 0 (parallel to a generator): c/q
             for (double t : r) {
-                const double z = o.z + t * d.z;  // z ≤ 1 drops the mirrored nappe above the apex
+                // z ≤ 1 drops the mirrored nappe beyond the apex (at z = 1/m ≥ 1)
+                const double z = o.z + t * d.z;
                 if (z >= 0 && z <= 1) n.offer(t, part_side);
             }
         }
-        if (s.caps) hit_caps(o, d, false, n);
+        if (s.caps) hit_caps(o, d, s.apex > 0, n, double(s.apex) * s.apex);
         return n.found;
     }
 
@@ -65,19 +74,21 @@ struct cone {
     }
 
     static SurfacePoint surface_at(const Shape& s, const Ray& r, const Hit& hit) {
-        return surface_from_object_normal(s, r, hit, [](const Vec3& p, int part) {
-            if (part != part_side) return Vec3{0, 0, -1};
-            // ∇(x² + y² − (1 − z)²) ∝ (x, y, 1 − z) = (x, y, r) on the surface; using
+        const float m = 1.0f - s.apex;
+        return surface_from_object_normal(s, r, hit, [m](const Vec3& p, int part) {
+            if (part != part_side) return Vec3{0, 0, part == part_cap1 ? 1.0f : -1.0f};
+            // ∇(x² + y² − (1 − m·z)²) ∝ (x, y, m·(1 − m·z)) = (x, y, m·r) on the surface; using
             // r = √(x² + y²) keeps it exact near the apex, where (0, 0, 1) is the choice
             const float rr = std::sqrt(p.x * p.x + p.y * p.y);
-            return rr > 0 ? Vec3{p.x, p.y, rr} : Vec3{0, 0, 1};
+            return rr > 0 ? Vec3{p.x, p.y, m * rr} : Vec3{0, 0, 1};
         });
     }
 
-    /// The side as one triangle per segment from the base rim to the apex. The normal at the
-    /// apex is undefined, so each segment has its own apex vertex (same position) with the
-    /// normal of the segment's mid-angle.
+    /// A full cone's side as one triangle per segment from the base rim to the apex. The normal
+    /// at the apex is undefined, so each segment has its own apex vertex (same position) with
+    /// the normal of the segment's mid-angle. A frustum's side is one quad per segment.
     static void tessellate(const Shape& s, int level, TriangleMesh& out) {
+        if (s.apex > 0) return tessellate_frustum(s, level, out);
         Emitter e(s.transform, out);
         const int n = level;
         const Circle circle(n);
@@ -96,11 +107,41 @@ struct cone {
         if (s.caps) emit_cap(e, circle, 0.0f, false);
     }
 
-    /// πr·slant + πr² (the base).
+    /// The frustum: vertex (j, 0) on the base rim and (j, 1) on the top rim (radius k), both with
+    /// the side normal ∝ ∇(√(x²+y²) + m·z − 1) = (cosφ, sinφ, m); caps at both ends.
+    static void tessellate_frustum(const Shape& s, int level, TriangleMesh& out) {
+        Emitter e(s.transform, out);
+        const int n = level;
+        const Circle circle(n);
+        const float k = s.apex, m = 1.0f - k;
+        e.reserve(2 * size_t(n) + (s.caps ? 2 * size_t(n + 1) : 0),
+                  2 * size_t(n) + (s.caps ? 2 * n : 0));
+        uint32_t bottom = 0;
+        for (int j = 0; j < n; ++j) {
+            const Vec3 nr{circle.c[j], circle.s[j], m};
+            const uint32_t b = e.vertex({circle.c[j], circle.s[j], 0}, nr);
+            e.vertex({circle.c[j] * k, circle.s[j] * k, 1}, nr);
+            if (j == 0) bottom = b;
+        }
+        // Vertex (j, 0) is bottom + 2j, (j, 1) is bottom + 2j + 1; as the cylinder's, outward.
+        for (int j = 0; j < n; ++j) {
+            const uint32_t a = bottom + 2 * j, b = bottom + 2 * ((j + 1) % n);
+            e.quad(a, b, b + 1, a + 1);
+        }
+        if (s.caps) {
+            emit_cap(e, circle, 0.0f, false);
+            emit_cap(e, circle, 1.0f, true, k);
+        }
+    }
+
+    /// π(r + r′)·slant + πr² + πr′² (the caps), r′ = k·r the apex radius, slant = √((r − r′)² +
+    /// h²).
     static double area(const Shape& s) {
         const Affine& M = s.transform.world_from_object;
         const double r = 0.5 * (axis_length(M, 0) + axis_length(M, 1)), h = axis_length(M, 2);
-        return pi * r * std::sqrt(r * r + h * h) + (s.caps ? pi * r * r : 0.0);
+        const double r2 = r * s.apex;
+        return pi * (r + r2) * std::sqrt((r - r2) * (r - r2) + h * h) +
+               (s.caps ? pi * (r * r + r2 * r2) : 0.0);
     }
 };
 
