@@ -159,6 +159,27 @@ TEST(NffReader, EqualRadiiMakeAnOpenCylinderOnOneLineOrThree) {
     }
 }
 
+TEST(NffReader, UnequalRadiiMakeAnOpenFrustumWiderEndAsBase) {
+    // base radius 0.2 at z = 1, apex radius 0.5 at z = 3: the wider end becomes the base
+    for (const std::string c : {"c 0 0 1 0.2 0 0 3 0.5\n", "c 0 0 3 -0.5 0 0 1 0.2\n"}) {
+        const SceneDesc d = load(c);
+        ASSERT_EQ(d.objects.size(), 1u) << c;
+        const ObjectDesc& o = d.objects[0];
+        EXPECT_EQ(o.type, ShapeType::cone);
+        EXPECT_EQ(o.base, Vec3(0, 0, 3));
+        EXPECT_EQ(o.axis, Vec3(0, 0, -1));
+        EXPECT_FLOAT_EQ(o.height, 2);
+        EXPECT_FLOAT_EQ(o.radius, 0.5f);
+        EXPECT_FLOAT_EQ(o.apex_radius, 0.2f);
+        EXPECT_FALSE(o.caps);
+    }
+    const SceneDesc pointed = load("c\n0 0 0 1\n0 4 0 0\n");
+    EXPECT_EQ(pointed.objects.at(0).type, ShapeType::cone);
+    EXPECT_EQ(pointed.objects[0].base, Vec3(0, 0, 0));
+    EXPECT_EQ(pointed.objects[0].axis, Vec3(0, 1, 0));
+    EXPECT_FLOAT_EQ(pointed.objects[0].apex_radius, 0);
+}
+
 TEST(NffReader, PolygonsOfOneMaterialFormOneFlatMesh) {
     const SceneDesc d = load(
         "f 1 0 0 1 0 1 0 1\np 3\n0 0 0\n1 0 0\n0 1 0\n"
