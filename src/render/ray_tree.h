@@ -33,7 +33,7 @@ struct RayTreeNode {
     bool flipped = false;           ///< N was flipped towards the viewer
     Rgb local;                      ///< shade()'s colour: ambient + Σ (diffuse + specular)
     bool total_internal_reflection = false;  ///< the refracted share followed the reflection
-    /// As a child: the colour trace() returned for this ray, A (1 or 1/(d+K)), the
+    /// As a child: the colour trace() returned for this ray, A (1, 1/(d+K) or 1/d²), the
     /// coefficient (reflection or transparency) and the contribution added to the parent:
     /// returned·A·coefficient.
     Rgb returned;

@@ -10,6 +10,7 @@
 #include "math/vec3.h"
 #include "scene/material.h"
 #include "scene/scene_desc.h"
+#include "shading/shade.h"
 
 namespace luz {
 
@@ -46,16 +47,19 @@ Bounce bounce(const Vec3& D, const SurfacePoint& sp, const Material& m);
 struct TreeRules {
     int max_depth = 0;  ///< 0: no secondary rays (raycast, or raytrace with max_depth 0)
     float min_weight = 0;
+    /// A depends on d: `render.tree_attenuation` under a law other than `none` (whose A is 1)
     bool tree_attenuation = false;
-    float K = 1;  ///< attenuation_k
+    float K = 1;                            ///< attenuation_k
+    Attenuation law = Attenuation::linear;  ///< the scene's `attenuation`
 
     TreeRules() = default;
     /// The rules of a render; `full` false (raycast) allows no secondary ray.
     TreeRules(const Settings& s, bool full)
         : max_depth(full ? s.render.max_depth : 0),
           min_weight(s.render.min_weight),
-          tree_attenuation(s.render.tree_attenuation),
-          K(s.attenuation_k) {}
+          tree_attenuation(s.render.tree_attenuation && s.attenuation != Attenuation::none),
+          K(s.attenuation_k),
+          law(s.attenuation) {}
 
     /// Whether a hit at ray-tree depth `depth` on material m spawns secondary rays.
     bool descends(int depth, const Material& m) const {
@@ -64,17 +68,17 @@ struct TreeRules {
     /// Whether a secondary ray of weight w (the product of the coefficients that scale it) is
     /// traced: below min_weight it is not, and contributes 0.
     bool traced(float w) const { return !(w < min_weight); }
-    /// A for a secondary ray whose segment has length d: 1, or 1/(d+K) with tree_attenuation
-    /// (0 for a ray that hits nothing, d = ∞).
+    /// A for a secondary ray whose segment has length d: 1, or with tree_attenuation 1/(d+K)
+    /// (`linear`) or 1/d² (`inverse_square`), 0 for a ray that hits nothing (d = ∞).
     float A(float d) const {
         if (!tree_attenuation) return 1.0f;
-        return std::isinf(d) ? 0.0f : 1.0f / (d + K);
+        return std::isinf(d) ? 0.0f : 1.0f / distance_divisor(law, d, K);
     }
     /// What a child that returned `c` over a segment of length d brings its parent before its
     /// coefficient: A·c.
     Rgb through(const Rgb& c, float d) const {
         if (!tree_attenuation) return c;
-        return std::isinf(d) ? Rgb{0.0f} : c * (1.0f / (d + K));
+        return std::isinf(d) ? Rgb{0.0f} : c * (1.0f / distance_divisor(law, d, K));
     }
 };
 

@@ -30,9 +30,9 @@ struct ZbufferFrame {
     bool perspective;
 };
 
-/// The lighting shade() is given: the scene's model, ambient light, K and lights.
+/// The lighting shade() is given: the scene's model, ambient light, K, lights and law.
 inline Lighting lighting_of(const Settings& desc) {
-    return {desc.render.model, desc.ambient, desc.attenuation_k, desc.lights};
+    return {desc.render.model, desc.ambient, desc.attenuation_k, desc.lights, desc.attenuation};
 }
 
 /// The surface point of a fragment of an object's triangle (not a light sphere's).

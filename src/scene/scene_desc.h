@@ -19,6 +19,8 @@ enum class Encoding { linear, srgb };
 enum class Projection { orthographic, perspective };
 enum class Pipeline { zbuffer, raycast, raytrace };
 enum class Model { lambert, phong };
+/// The distance law of phong's light term (SPEC §1 `attenuation`): Il, Il/(d+K), Il/d².
+enum class Attenuation { none, linear, inverse_square };
 enum class Accel { bvh, none };
 enum class AaMode { none, grid, adaptive };
 enum class AaFilter { box, tent };
@@ -82,6 +84,7 @@ struct Settings {
     RenderDesc render;
     Rgb ambient{1.0f};           ///< Ia
     float attenuation_k = 1.0f;  ///< K
+    Attenuation attenuation = Attenuation::linear;
     std::vector<Light> lights;
     std::vector<Material> materials;  ///< materials[0] is the default material
 };

@@ -43,8 +43,8 @@ void give_back_free_memory() {
 void read_scene(const Json& doc, const std::string& base_dir, MeshCache* meshes_read,
                 const AnimationDesc& animation, int frame, SceneDesc& scene) {
     const Section top(doc, "",
-                      {"image", "camera", "render", "ambient", "attenuation_k", "lights",
-                       "materials", "objects", "animation"},
+                      {"image", "camera", "render", "ambient", "attenuation_k", "attenuation",
+                       "lights", "materials", "objects", "animation"},
                       "");
     if (const Json* j = top.get("image")) read_image(*j, scene.image);
     read_camera(top.get("camera"), scene.camera);
@@ -54,6 +54,10 @@ void read_scene(const Json& doc, const std::string& base_dir, MeshCache* meshes_
     if (const Json* j = top.get("render")) read_render(*j, scene.render, scene.geometry);
     top.rgb("ambient", scene.ambient);
     top.number("attenuation_k", scene.attenuation_k);
+    top.enumeration("attenuation", scene.attenuation,
+                    {{"none", Attenuation::none},
+                     {"linear", Attenuation::linear},
+                     {"inverse_square", Attenuation::inverse_square}});
 
     MaterialTable materials(scene.materials);
     MeshFiles meshes(scene, meshes_read);

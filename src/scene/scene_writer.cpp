@@ -113,6 +113,9 @@ std::string scene_to_json(const SceneDesc& d, const std::string& out_dir) {
                      {"max_level", aa.max_level}}}};
     j["ambient"] = vec(d.ambient);
     j["attenuation_k"] = num(d.attenuation_k);
+    j["attenuation"] = d.attenuation == Attenuation::none     ? "none"
+                       : d.attenuation == Attenuation::linear ? "linear"
+                                                              : "inverse_square";
     Json lights = Json::array();
     for (const Light& l : d.lights) {
         lights.push_back({{"position", vec(l.position)},

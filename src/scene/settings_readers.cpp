@@ -144,12 +144,16 @@ void read_lights(const Json* j, SceneDesc& scene) {
     if (scene.lights.empty()) {
         // No lights: one white light at the camera's upper left. Under `lambert` Il = 1 (the
         // slide's value). Under `phong` Il/(d+K) would make Il = 1 very dim, so Il = d + K with
-        // d the light's distance to look_at: Il/(d+K) = 1 at the look-at point (SPEC §1 model 2).
+        // d the light's distance to look_at: Il/(d+K) = 1 at the look-at point (SPEC §1 model 2);
+        // likewise Il = d² under `attenuation: inverse_square` and Il = 1 under `none`.
         Light light;
         light.position = default_position;
-        const float Il = scene.render.model == Model::lambert
-                             ? 1.0f
-                             : length(light.position - scene.camera.look_at) + scene.attenuation_k;
+        const float d = length(light.position - scene.camera.look_at);
+        float Il = 1.0f;
+        if (scene.render.model == Model::phong) {
+            if (scene.attenuation == Attenuation::linear) Il = d + scene.attenuation_k;
+            if (scene.attenuation == Attenuation::inverse_square) Il = d * d;
+        }
         light.intensity = Rgb(Il);
         scene.lights.push_back(light);
     }

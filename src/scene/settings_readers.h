@@ -17,7 +17,7 @@ void read_camera(const Json* j, CameraDesc& camera);
 void read_render(const Json& j, RenderDesc& render, GeometryDesc& geometry);
 
 /// `lights` (nullptr when absent). Without lights, one white light at the camera's upper left;
-/// needs scene.camera, scene.render.model and scene.attenuation_k read first.
+/// needs scene.camera, scene.render.model, scene.attenuation_k and scene.attenuation read first.
 void read_lights(const Json* j, SceneDesc& scene);
 
 }  // namespace luz::loader

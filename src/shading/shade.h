@@ -15,13 +15,28 @@
 
 namespace luz {
 
-/// What the model needs of the scene: the model, Ia, K and the lights.
+/// What the model needs of the scene: the model, Ia, K, the lights and the distance law.
 struct Lighting {
     Model model = Model::phong;
     Rgb Ia{1.0f};    ///< ambient light
     float K = 1.0f;  ///< attenuation constant of Il/(d+K)
     std::span<const Light> lights;
+    Attenuation attenuation = Attenuation::linear;  ///< the law of phong's light term
 };
+
+/// The divisor of phong's light term Il/divisor at distance d (SPEC §1 `attenuation`): d + K
+/// (`linear`), 1 (`none`), d² (`inverse_square`). Also the tree attenuation's 1/A (recursion.h).
+inline float distance_divisor(Attenuation law, float d, float K) {
+    switch (law) {
+        case Attenuation::none:
+            return 1.0f;
+        case Attenuation::inverse_square:
+            return d * d;
+        case Attenuation::linear:
+            break;
+    }
+    return d + K;
+}
 
 /// A surface point as both pipelines see it.
 struct ShadingPoint {
@@ -38,8 +53,8 @@ struct LightTerm {
     float distance = 0;    ///< d_j
     float cos_theta = 0;   ///< max(0, N·L_j)
     float cos_alpha = 0;   ///< max(0, R_j·S), 0 when N·L_j ≤ 0
-    Rgb diffuse;     ///< vis_j·Il_j·Kd·cosθ_j (lambert) or vis_j·Il_j/(d_j+K)·Kd·cosθ_j
-    Rgb specular;    ///< vis_j·Il_j/(d_j+K)·Ks·cosα_j^n (phong only)
+    Rgb diffuse;  ///< vis_j·Il_j·Kd·cosθ_j (lambert) or vis_j·Il_j/(d_j+K)·Kd·cosθ_j (phong)
+    Rgb specular;  ///< vis_j·Il_j/(d_j+K)·Ks·cosα_j^n (phong only); (d_j+K): the law's divisor
     Rgb unshadowed;  ///< diffuse + specular as they would be with vis_j = 1 (SPEC §1.5 shadow)
 };
 
@@ -101,11 +116,14 @@ inline Rgb shade(const ShadingPoint& p, const Lighting& lighting, Visibility&& v
                     // I += vis_j·Il_j·Kd·cosθ_j
                     diffuse = light.intensity * c.kd * (vis * t.cos_theta);
                 } else {
-                    // I += vis_j·Il_j/(d_j+K)·(Kd·cosθ_j + Ks·cosα_j^n)
+                    // I += vis_j·Il_j/(d_j+K)·(Kd·cosθ_j + Ks·cosα_j^n), d_j+K or the
+                    // attenuation law's divisor (1, d_j²)
                     const Vec3 R = N * (2 * N_dot_L) - L;  // mirror direction of L_j
                     const float R_dot_S = dot(R, p.S);
                     t.cos_alpha = R_dot_S > 0 ? R_dot_S : 0.0f;
-                    const Rgb Il_att = light.intensity * (vis / (d + lighting.K));
+                    const Rgb Il_att =
+                        light.intensity *
+                        (vis / distance_divisor(lighting.attenuation, d, lighting.K));
                     diffuse = Il_att * c.kd * t.cos_theta;
                     // w(θ_j)·cosα^n, w = Ks or Schlick's curve (SPEC §1.4); w = 0 needs no power
                     const Rgb w = specular_reflectance(m, t.cos_theta);

@@ -36,6 +36,19 @@ struct AllVisibleLanes {
     }
 };
 
+/// distance_divisor() (shade.h) of eight distances: d + K, 1 or d².
+[[gnu::always_inline]] inline Lane8f distance_divisor(Attenuation law, Lane8f d, float K) {
+    switch (law) {
+        case Attenuation::none:
+            return lanes(1.0f);
+        case Attenuation::inverse_square:
+            return d * d;
+        case Attenuation::linear:
+            break;
+    }
+    return d + K;
+}
+
 /// shade(p_k, lighting, visibility) in lane k of I, for the lanes of `active` (bit k: lane k).
 /// `visibility(j, L, d, lit)` gives vis_j by lane, read in the lanes of `lit` (active, in front
 /// of the surface) only, and is not called when there are none.
@@ -83,13 +96,13 @@ template <class Visibility = AllVisibleLanes>
             // I += vis_j·Il_j·Kd·cosθ_j
             for (int a = 0; a < 3; ++a) diffuse[a] = (Il[a] * p.kd[a]) * (vis * cos_theta);
         } else {
-            // I += vis_j·Il_j/(d_j+K)·(Kd·cosθ_j + Ks·cosα_j^n)
+            // I += vis_j·Il_j/(d_j+K)·(Kd·cosθ_j + Ks·cosα_j^n), d_j+K or the law's divisor
             Lane8f R[3];  // mirror direction of L_j
             const Lane8f two_N_dot_L = 2.0f * N_dot_L;
             for (int a = 0; a < 3; ++a) R[a] = N[a] * two_N_dot_L - L[a];
             const Lane8f R_dot_S = dot(R, p.S);
             const Lane8f cos_alpha = lane_select(lane_gt(R_dot_S, zero), R_dot_S, zero);
-            const Lane8f att = vis / (d + lighting.K);
+            const Lane8f att = vis / distance_divisor(lighting.attenuation, d, lighting.K);
             Lane8f Il_att[3];
             for (int a = 0; a < 3; ++a) {
                 Il_att[a] = Il[a] * att;

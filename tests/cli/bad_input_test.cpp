@@ -166,6 +166,8 @@ std::vector<BadCase> bad_cases() {
     v.push_back(
         option_case("set_bad_index", {"--set", "objects.99.radius=2"}, {"--set", "objects.99"}));
     v.push_back(option_case("set_out_of_range", {"--set", "ambient=-1"}, {"--set", "ambient"}));
+    v.push_back(option_case("set_unknown_attenuation", {"--set", "attenuation=quadratic"},
+                            {"--set", "attenuation", "unknown value \"quadratic\""}));
     // --- options
     v.push_back(option_case("unknown_pipeline", {"--pipeline", "foo"}, {"--pipeline"}));
     v.push_back(option_case("unknown_model", {"--model", "blinn"}, {"--model"}));

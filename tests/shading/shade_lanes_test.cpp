@@ -1,7 +1,7 @@
 // shade_lanes() against shade(), lane for lane and bit for bit: random points, normals, viewers,
 // materials (Ks zero or not, many exponents, Schlick's reflectance, checkers whose Ka and Kd the
 // caller picks per lane) and lights (in front, behind, several; seen, blocked or through glass
-// lane by lane), both models; and only the active lanes are shaded.
+// lane by lane), both models, every attenuation law; and only the active lanes are shaded.
 #include "shading/shade_lanes.h"
 
 #include <gtest/gtest.h>
@@ -39,7 +39,8 @@ float visibility_of(bool shadows, int group, size_t j, int k) {
 
 /// Shades `count` random points both ways under `model` and compares every active lane; with
 /// `shadows`, each light's visibility varies by lane (as shadow rays give it).
-void expect_lanes_match(Model model, int light_count, unsigned seed, bool shadows = false) {
+void expect_lanes_match(Model model, int light_count, unsigned seed, bool shadows = false,
+                        Attenuation law = Attenuation::linear) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> pos(-5.0f, 5.0f), u(0.0f, 1.0f);
     std::vector<Material> materials;
@@ -48,7 +49,7 @@ void expect_lanes_match(Model model, int light_count, unsigned seed, bool shadow
     for (int j = 0; j < light_count; ++j)
         lights.push_back(
             Light{{pos(rng), pos(rng), pos(rng)}, Rgb{20 * u(rng), 9 * u(rng), 3.0f}, 0});
-    const Lighting lighting{model, Rgb{u(rng), u(rng), u(rng)}, 2 * u(rng), lights};
+    const Lighting lighting{model, Rgb{u(rng), u(rng), u(rng)}, 2 * u(rng), lights, law};
 
     int compared = 0, lit = 0, schlick = 0, checker = 0;
     for (int group = 0; group < 400; ++group) {
@@ -125,6 +126,11 @@ TEST(ShadeLanes, PhongMatchesShadeBitForBit) {
 TEST(ShadeLanes, LambertMatchesShadeBitForBit) {
     expect_lanes_match(Model::lambert, 1, 3);
     expect_lanes_match(Model::lambert, 2, 4);
+}
+
+TEST(ShadeLanes, EveryAttenuationLawMatchesShadeBitForBit) {
+    expect_lanes_match(Model::phong, 2, 8, true, Attenuation::none);
+    expect_lanes_match(Model::phong, 2, 9, true, Attenuation::inverse_square);
 }
 
 TEST(ShadeLanes, NoLightsGiveTheAmbientTerm) { expect_lanes_match(Model::phong, 0, 5); }

@@ -108,6 +108,8 @@ bool lighting_section(SceneDesc& d) {
     bool changed = false;
     changed |= edit_intensity(PanelSlider::ambient, d.ambient);
     changed |= drag_float(PanelSlider::attenuation_k, d.attenuation_k, 0.01f);
+    // phong's distance law (SPEC §1), in Attenuation's order
+    changed |= edit_enum("attenuation", d.attenuation, {"none", "linear", "inverse_square"});
     for (size_t j = 0; j < d.lights.size(); ++j) {
         ImGui::PushID(static_cast<int>(j));
         if (ImGui::TreeNode("light", "lights.%zu", j)) {
