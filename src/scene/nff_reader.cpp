@@ -368,6 +368,7 @@ class NffReader {
         // Ia = √L/(2L), the SPD's suggestion (L = 1 when the file has no light).
         const double L = std::max<double>(lights_.size(), 1);
         doc["ambient"] = std::sqrt(L) / (2 * L);
+        doc["attenuation"] = "none";  // NFF lights do not fade with distance
         doc["lights"] = Json::array();
         for (const NffLight& l : lights_) {
             const Vec3 I = l.coloured ? l.colour : Vec3(float(1 / std::sqrt(L)));

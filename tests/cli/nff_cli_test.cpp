@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -106,6 +107,26 @@ TEST_F(NffCli, CheckpointResumesToTheBitsOfAnUninterruptedRender) {
     }
     EXPECT_EQ(read_file(dir_ / "resumed.png"), read_file(dir_ / "plain.png"));
     EXPECT_FALSE(std::filesystem::exists(dir_ / "g.ckpt"));
+}
+
+TEST_F(NffCli, OnePixelHoldsTheHandComputedPhongWithoutDistanceAttenuation) {
+    // The centre ray meets the unit sphere at P = (0, 0, 1), N = L = S = (0, 0, 1): cosθ = cosα
+    // = 1. One light without colour: Il = 1/√1; Ia = √1/(2·1) = 0.5; Kd·rgb = (0.8, 0.4, 0.2) = Ka;
+    // Ks = 0.1. attenuation none: I = Ia·Ka + Il·(Kd·cosθ + Ks·cosα^n) + 0.1·(background 0)
+    // = (0.4, 0.2, 0.1) + (0.8, 0.4, 0.2) + 0.1 = (1.3, 0.7, 0.4).
+    write_file(dir_ / "one.nff",
+               "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 10\nhither 1\nresolution 1 1\n"
+               "l 0 0 10\nf 1 0.5 0.25 0.8 0.1 10 0 1\ns 0 0 0 1\n");
+    const RunResult r = run_luz({"render", "one.nff", "-o", "one.pfm"}, dir_);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string pfm = read_file(dir_ / "one.pfm");
+    ASSERT_EQ(pfm.rfind("PF\n1 1\n-1", 0), 0u) << pfm.substr(0, 12);
+    float rgb[3];
+    ASSERT_GE(pfm.size(), sizeof rgb);
+    std::memcpy(rgb, pfm.data() + pfm.size() - sizeof rgb, sizeof rgb);
+    EXPECT_NEAR(rgb[0], 1.3f, 1.0f / 255);
+    EXPECT_NEAR(rgb[1], 0.7f, 1.0f / 255);
+    EXPECT_NEAR(rgb[2], 0.4f, 1.0f / 255);
 }
 
 }  // namespace

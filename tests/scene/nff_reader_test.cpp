@@ -84,6 +84,7 @@ TEST(NffReader, ImpliedSettings) {
     EXPECT_EQ(d.render.max_depth, 4);
     EXPECT_FALSE(d.render.tree_attenuation);
     EXPECT_EQ(d.render.min_weight, 0.0f);
+    EXPECT_EQ(d.attenuation, Attenuation::none);
     // one light: Ia = √1/(2·1) = 0.5
     expect_rgb(d.ambient, 0.5f, 0.5f, 0.5f);
 }
