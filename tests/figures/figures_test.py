@@ -19,8 +19,8 @@ import time
 LIMIT_SECONDS = 120
 FIGURES = ["diffuse_specular", "lambert", "distance", "specular_n", "specular_ks", "terms",
            "reflectance", "coloured_lights", "local_global", "max_depth", "tree_attenuation",
-           "snell", "ray_tree", "antialias", "bounding_volumes", "speed", "primitives",
-           "materials"]
+           "snell", "ray_tree", "antialias", "bounding_volumes", "speed", "spd",
+           "primitives", "materials"]
 
 
 def fail(msg):
@@ -63,7 +63,7 @@ def run(luz, out):
     on_disk = {os.path.relpath(p, out) for p in glob.glob(os.path.join(out, "img", "*.png"))}
     if on_disk - set(srcs):
         fail(f"images not on the page: {sorted(on_disk - set(srcs))}")
-    for href in re.findall(r'href="(scenes/[^"]+\.json)"', page):
+    for href in re.findall(r'href="(scenes/[^"]+\.(?:json|nff))"', page):
         if not os.path.isfile(os.path.join(out, href)):
             fail(f"scene file {href} not copied")
     if not os.path.isfile(os.path.join(out, "scenes", "bunny.obj")):

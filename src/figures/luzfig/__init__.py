@@ -1,7 +1,7 @@
 """The figure groups of `luz figures`, one module each, in the lecture's order."""
 
 from . import (antialias, assignment, bounding, colour, distance, global_models, lambert,
-               reflectance, reflection, specular, speed, terms)
+               reflectance, reflection, spd, specular, speed, terms)
 
 GROUPS = [
     ("diffuse_specular", reflection),
@@ -15,5 +15,6 @@ GROUPS = [
     ("antialias", antialias),
     ("bounding", bounding),
     ("speed", speed),
+    ("spd", spd),
     ("assignment", assignment),
 ]

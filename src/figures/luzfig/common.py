@@ -66,12 +66,14 @@ def _shown(arg):
 
 def render(ctx, scene, out_name, opts=(), aov=None, fmt="pfm", stats=True, aa_mask=None,
            size=(W, H)):
-    """Runs `luz render SCENE -o work/OUT_NAME.FMT OPTS` (SCENE: a figures scene name or
-    demo:NAME) and returns {"image", "aov", "stats", "command", "seconds"}: float arrays read
+    """Runs `luz render SCENE -o work/OUT_NAME.FMT OPTS` (SCENE: a figures scene name,
+    demo:NAME or an NFF file under the scenes root) and returns {"image", "aov", "stats", "command", "seconds"}: float arrays read
     back from the PFM files (row 0 on top), the --stats JSON, and the command as the page shows
     it (run from the output folder)."""
     if scene.startswith("demo:"):
         path, shown = scene, scene
+    elif scene.endswith(".nff"):  # a scene file under the scenes root, e.g. spd/balls.nff
+        path, shown = os.path.join(ctx.scenes, scene), f"scenes/{scene}"
     else:
         path, shown = ctx.scene(scene)
     work = os.path.join(ctx.out, "work")
@@ -201,14 +203,20 @@ def hit_points(camera, depth):
 
 
 def copy_scene_files(ctx):
-    """Copies scenes/figures/*.json and scenes/bunny.obj into the output folder, so that the
-    page's commands run from it."""
+    """Copies scenes/figures/*.json, scenes/bunny.obj and scenes/spd/*.nff into the output
+    folder, so that the page's commands run from it."""
     dst = os.path.join(ctx.out, "scenes", "figures")
     os.makedirs(dst, exist_ok=True)
     for n in sorted(os.listdir(os.path.join(ctx.scenes, "figures"))):
         if n.endswith(".json"):
             shutil.copy(os.path.join(ctx.scenes, "figures", n), dst)
     shutil.copy(os.path.join(ctx.scenes, "bunny.obj"), os.path.join(ctx.out, "scenes"))
+    spd = os.path.join(ctx.scenes, "spd")
+    if os.path.isdir(spd):  # the SPD figure's NFF scenes
+        os.makedirs(os.path.join(ctx.out, "scenes", "spd"), exist_ok=True)
+        for n in sorted(os.listdir(spd)):
+            if n.endswith(".nff"):
+                shutil.copy(os.path.join(spd, n), os.path.join(ctx.out, "scenes", "spd"))
 
 
 def write_web_page(ctx):
