@@ -9,6 +9,7 @@
 #include "geometry/ray_triangle.h"
 #include "geometry/scene_query.h"
 #include "geometry/shapes.h"
+#include "geometry/sphere_group.h"
 #include "math/lane_count.h"
 #include "math/next_float.h"
 
@@ -65,24 +66,42 @@ inline void offer_triangle(const WatertightRay& w, const Vec3& p0, const Vec3& p
     }
 }
 
-/// The watertight test of the triangles among lanes `lanes` of BVH block b, four at a time
-/// (intersect_triangles4(); counted in counters): the lanes that hit in (t_min, t_max) at t
-/// with barycentrics b1, b2; those to test one by one by the double path (`scalar`); and the
-/// lanes that hold shapes, for the caller to test.
+/// The lanes `lanes` of BVH block b against r, up to the decision (counted in counters): its
+/// triangles by the watertight test four at a time (intersect_triangles4()): the lanes that hit
+/// in (t_min, t_max) at t with barycentrics b1, b2, and those to test one by one by the double
+/// path (`scalar`); its world-form spheres four at a time (sphere_lanes_roots(), ahead only
+/// when t_min ≥ 0): the lanes met at roots `spheres.t0`, `spheres.t1` (`spheres.hit`); and the
+/// lanes for the caller to test one shape at a time (`shapes`: other shapes, the spheres
+/// needing world_sphere_roots()'s double path, and the shapes around an axis that
+/// axis_lanes_missed() could not rule out).
 struct BlockTest {
     Lane4f t, b1, b2;
     unsigned hit = 0, scalar = 0, shapes = 0;
+    SphereGroupRoots spheres;
 };
 [[gnu::always_inline]] inline BlockTest test_block(const PrimBlock& b, unsigned lanes,
-                                                   const WatertightRay& w, float t_min, float t_max,
+                                                   const Ray& ray, const WatertightRay& w,
+                                                   float t_min, float t_max,
                                                    IntersectCounters& counters) {
     BlockTest r;
     const unsigned triangles = b.triangle_lanes() & lanes;
-    r.shapes = lanes & ~triangles;
+    const unsigned spheres = b.sphere_lanes() & lanes;
+    r.shapes = lanes & ~triangles & ~spheres;
     if (triangles != 0) {
         r.hit = intersect_triangles4(w, b, t_min, t_max, r.t, r.b1, r.b2, r.scalar) & triangles;
         r.scalar &= triangles;
         counters.primitive += static_cast<uint64_t>(lane_count(triangles & ~r.scalar));
+    }
+    if (const unsigned axis = b.axis_lanes() & lanes; axis != 0) {
+        // the shapes whose axis the ray passes far from: missed, one test each
+        const unsigned missed = axis_lanes_missed(b, axis, ray);
+        r.shapes &= ~missed;
+        counters.primitive += static_cast<uint64_t>(lane_count(missed));
+    }
+    if (spheres != 0) {
+        r.spheres = sphere_lanes_roots(b.spheres(spheres), ray, t_min >= 0);
+        r.shapes |= r.spheres.slow;  // offer_shape() / cross_shape() count these
+        counters.primitive += static_cast<uint64_t>(lane_count(spheres & ~r.spheres.slow));
     }
     return r;
 }
@@ -106,12 +125,19 @@ template <class Visit>
                                                unsigned lanes, const Ray& r, const WatertightRay& w,
                                                float t_min, Best& best,
                                                IntersectCounters& counters) {
-    const BlockTest test = test_block(b, lanes, w, t_min, best.limit(), counters);
+    const BlockTest test = test_block(b, lanes, r, w, t_min, best.limit(), counters);
     for (unsigned hit = test.hit; hit != 0; hit &= hit - 1) {
         const int k = __builtin_ctz(hit);
         if (best.better(test.t[k], b.shape[k], b.triangle[k]))
             best.take(test.t[k], b.shape[k], b.triangle[k], test.b1[k], test.b2[k],
                       static_cast<int>(b.triangle[k]));
+    }
+    for (unsigned hit = test.spheres.hit; hit != 0; hit &= hit - 1) {
+        const int k = __builtin_ctz(hit);
+        float t;  // the root intersect() would choose
+        if (nearest_root(test.spheres.t0[k], test.spheres.t1[k], t_min, best.limit(), t) &&
+            best.better(t, b.shape[k], 0))
+            best.take(t, b.shape[k], 0, 0.0f, 0.0f, part_side);
     }
     for (unsigned one = test.scalar; one != 0; one &= one - 1) {
         const int k = __builtin_ctz(one);
@@ -201,11 +227,17 @@ inline bool cross_triangle(const BuiltScene& scene, const Materials& materials,
                                                const PrimBlock& b, unsigned lanes, const Ray& r,
                                                const WatertightRay& w, float t_min, float t_max,
                                                Crossings& crossings, IntersectCounters& counters) {
-    const BlockTest test = test_block(b, lanes, w, t_min, t_max, counters);
+    const BlockTest test = test_block(b, lanes, r, w, t_min, t_max, counters);
     for (unsigned hit = test.hit; hit != 0; hit &= hit - 1) {
         const int k = __builtin_ctz(hit);
         const int material = scene.shapes[b.shape[k]].mesh->materials[b.triangle[k]];
         if (!add_crossings(materials, material, 1, crossings)) return false;
+    }
+    for (unsigned hit = test.spheres.hit; hit != 0; hit &= hit - 1) {
+        const int k = __builtin_ctz(hit);  // as crossings_at_roots() counts them
+        const uint32_t n = roots_within(test.spheres.t0[k], test.spheres.t1[k], t_min, t_max);
+        if (n > 0 && !add_crossings(materials, scene.shapes[b.shape[k]].material, n, crossings))
+            return false;
     }
     for (unsigned one = test.scalar; one != 0; one &= one - 1) {
         const int k = __builtin_ctz(one);
