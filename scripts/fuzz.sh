@@ -1,15 +1,15 @@
 #!/usr/bin/env bash
-# Fuzzes the scene loader, the OBJ/MTL loader and the --checkpoint reader with libFuzzer (clang,
+# Fuzzes the scene loader, the NFF reader, the OBJ/MTL loader and the --checkpoint reader with libFuzzer (clang,
 # ASan + UBSan), all at once, for SECONDS each (default 600). Builds into build/fuzz/, seeds from
 # scenes/, the demo scenes and tests/corpus/; inputs that fail go to fuzz/findings/<target>/.
-#   bash scripts/fuzz.sh [SECONDS] [scene|obj|checkpoint ...]
+#   bash scripts/fuzz.sh [SECONDS] [scene|nff|obj|checkpoint ...]
 # Each input a fuzzer found a bug with belongs in tests/corpus/ as a regression case.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-600}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(scene obj checkpoint)
+[ ${#targets[@]} -eq 0 ] && targets=(scene nff obj checkpoint)
 
 # clang and its libFuzzer runtime (Debian 12: clang, libclang-rt-14-dev), installed if missing
 scripts/setup.sh
@@ -34,13 +34,13 @@ for src in src/scene/*.cpp fuzz/tinyobj_impl.cpp src/render/checkpoint_file.cpp;
   objs+=("$o")
 done
 wait
-for t in scene obj checkpoint; do
+for t in scene nff obj checkpoint; do
   clang++ "${flags[@]}" -fsanitize=fuzzer "fuzz/fuzz_${t}_loader.cpp" "${objs[@]}" -lz \
     -o "$out/fuzz_${t}_loader"
 done
 
 # 2. Seed corpora (fuzz/corpus/<target>/ keeps what the fuzzer learns between runs).
-mkdir -p fuzz/corpus/scene fuzz/corpus/obj fuzz/corpus/checkpoint
+mkdir -p fuzz/corpus/scene fuzz/corpus/nff fuzz/corpus/obj fuzz/corpus/checkpoint
 python3 - <<'PY'
 import re, pathlib, hashlib
 src = pathlib.Path("src/scene/demo_scenes.cpp").read_text()
@@ -49,12 +49,15 @@ for i, text in enumerate(re.findall(r'R"json\((.*?)\)json"', src, re.S)):
 PY
 seed_scene=(fuzz/corpus/scene)
 seed_obj=(fuzz/corpus/obj)
+seed_nff=(fuzz/corpus/nff tests/corpus/nff tests/scenes/nff)
 seed_checkpoint=(fuzz/corpus/checkpoint tests/corpus/checkpoints)
 for d in tests/corpus/scenes fuzz/seeds/scene; do [ -d "$d" ] && seed_scene+=("$d"); done
 for d in tests/corpus/obj fuzz/seeds/obj; do [ -d "$d" ] && seed_obj+=("$d"); done
 cp -f scenes/*.json fuzz/corpus/scene/ 2>/dev/null || true
 # bunny.obj is large: its first 200 lines are seed enough
 head -n 200 scenes/bunny.obj > fuzz/corpus/obj/bunny_head.obj
+# the SPD scenes are large: their first 300 lines (gears' first 144-gons among them)
+for f in scenes/spd/*.nff; do head -n 300 "$f" > "fuzz/corpus/nff/$(basename "$f")"; done
 
 # 3. Run the targets side by side, in fork mode: a bug is written to fuzz/findings/<target>/
 #    and fuzzing goes on until the time is up.
@@ -70,9 +73,10 @@ run() {
 for t in "${targets[@]}"; do
   case "$t" in
     scene) run scene -dict=fuzz/json.dict "${seed_scene[@]}" & ;;
+    nff) run nff -dict=fuzz/nff.dict "${seed_nff[@]}" & ;;
     obj) run obj -dict=fuzz/obj.dict "${seed_obj[@]}" & ;;
     checkpoint) run checkpoint "${seed_checkpoint[@]}" & ;;
-    *) echo "fuzz.sh: unknown target $t (scene, obj or checkpoint)" >&2; exit 2 ;;
+    *) echo "fuzz.sh: unknown target $t (scene, nff, obj or checkpoint)" >&2; exit 2 ;;
   esac
 done
 wait

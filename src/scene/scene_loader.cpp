@@ -1,13 +1,14 @@
-// BuiltScene loading (SPEC §2): JSON text (json_text.h) → --set overrides applied to the document
-// (overrides.h) → the sections read and validated (settings_readers.h, material_table.h,
-// object_reader.h) into a SceneDesc with every default filled. Every error names the file (or
-// the override) and the line:column or key path.
+// BuiltScene loading (SPEC §2): JSON text (json_text.h) or an NFF file (nff_reader.h, SPEC §2.1)
+// → --set overrides applied to the document (overrides.h) → the sections read and validated
+// (settings_readers.h, material_table.h, object_reader.h) into a SceneDesc with every default
+// filled. Every error names the file (or the override) and the line:column, line or key path.
 #include "scene/scene_loader.h"
 
 #include <malloc.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <utility>
 
 #include "scene/animation.h"
@@ -17,6 +18,7 @@
 #include "scene/json_readers.h"
 #include "scene/material_table.h"
 #include "scene/message_text.h"
+#include "scene/nff_reader.h"
 #include "scene/obj_loader.h"
 #include "scene/object_reader.h"
 #include "scene/overrides.h"
@@ -72,7 +74,7 @@ void read_scene(const Json& doc, const std::string& base_dir, MeshCache* meshes_
 /// that put the bad value there (or, for a check across keys, changed one of the keys
 /// involved); otherwise the file.
 template <typename Read>
-void blaming(const std::string& file, const std::vector<Override>& overrides,
+void blaming(const std::string& file, const NffScene* nff, const std::vector<Override>& overrides,
              const std::vector<std::string>& roots, Read read) {
     try {
         read();
@@ -86,8 +88,10 @@ void blaming(const std::string& file, const std::vector<Override>& overrides,
                                  e.what);
             }
         }
-        throw InputError(printable(file) + ": " + (e.path.empty() ? "" : printable(e.path) + ": ") +
-                         e.what);
+        // An NFF file's key paths came from its lines: the message names the line too.
+        const std::size_t line = nff ? nff->line_of(e.path) : 0;
+        throw InputError(printable(file) + (line ? ":" + std::to_string(line) : "") + ": " +
+                         (e.path.empty() ? "" : printable(e.path) + ": ") + e.what);
     }
 }
 
@@ -98,21 +102,33 @@ struct Document {
     std::vector<Override> overrides;
     std::vector<std::string> roots;  ///< per override: what it created or replaced
     AnimationDesc animation;
+    std::optional<NffScene> nff;  ///< an NFF file: its lines and meshes (its doc moved to doc)
 };
 
-Document read_document(std::string_view json_text, const std::string& file,
+/// The file's document: its JSON text parsed, or an NFF file read (SPEC §2.1).
+Json read_text(std::string_view text, const std::string& file, const std::string& base_dir,
+               std::optional<NffScene>* nff) {
+    if (!is_nff_file(file)) return parse_text(text, file);
+    NffScene scene = read_nff(text, file, base_dir);
+    Json doc = std::move(scene.doc);
+    if (nff) *nff = std::move(scene);
+    return doc;
+}
+
+Document read_document(std::string_view text, const std::string& file, const std::string& base_dir,
                        const std::vector<Override>& overrides) {
-    Document d{{}, parse_text(json_text, file), overrides, {}, {}};
+    Document d{{}, {}, overrides, {}, {}, {}};
+    d.doc = read_text(text, file, base_dir, &d.nff);
     d.roots.reserve(overrides.size());
     for (const Override& o : overrides) d.roots.push_back(apply_override(d.doc, o));
-    blaming(file, d.overrides, d.roots, [&] {
+    blaming(file, d.nff ? &*d.nff : nullptr, d.overrides, d.roots, [&] {
         if (d.doc.is_object() && d.doc.contains("animation")) {
             d.animation = read_animation(d.doc["animation"]);
         }
     });
     // Parsed twice only when animated: a large scene is held once.
     if (!d.animation.keys.empty()) {
-        d.text = overrides.empty() ? d.doc : parse_text(json_text, file);
+        d.text = overrides.empty() ? d.doc : read_text(text, file, base_dir, nullptr);
     }
     return d;
 }
@@ -144,7 +160,13 @@ SceneDesc read_frame(const Document& d, const std::string& file, const std::stri
         roots.clear();
         for (const Override& o : overrides) roots.push_back(apply_override(doc_copy, o));
     }
-    blaming(file, overrides, roots,
+    MeshCache own;
+    if (d.nff) {
+        // The NFF file's polygons: the meshes its `mesh` objects name, found as if read.
+        if (!meshes) meshes = &own;
+        meshes->insert(d.nff->meshes.begin(), d.nff->meshes.end());
+    }
+    blaming(file, d.nff ? &*d.nff : nullptr, overrides, roots,
             [&] { read_scene(*doc, base_dir, meshes, d.animation, frame, scene); });
     scene.animation = d.animation;
     scene.frame = frame;
@@ -158,7 +180,7 @@ SceneDesc parse_scene(std::string_view json_text, const std::string& file,
                       MeshCache* meshes) {
     SceneDesc first;
     {
-        const Document d = read_document(json_text, file, overrides);
+        const Document d = read_document(json_text, file, base_dir, overrides);
         MeshCache own;
         if (!meshes) meshes = &own;
         first = read_frame(d, file, base_dir, 0, meshes);
@@ -180,7 +202,7 @@ SceneDesc parse_scene(std::string_view json_text, const std::string& file,
 SceneDesc parse_scene_frame(std::string_view json_text, const std::string& file,
                             const std::string& base_dir, const std::vector<Override>& overrides,
                             int frame, MeshCache* meshes) {
-    const Document d = read_document(json_text, file, overrides);
+    const Document d = read_document(json_text, file, base_dir, overrides);
     const int frames = std::max(d.animation.frames, 1);
     if (frame < 0 || frame >= frames) {
         throw InputError(file + ": no frame " + std::to_string(frame) + " (frames 0 to " +

@@ -209,5 +209,25 @@ TEST_F(ViewTest, WithoutItsModuleViewSaysWhereItLookedAndRenderStillWorks) {
     EXPECT_TRUE(fs::exists(dir_ / "p.png"));
 }
 
+TEST_F(ViewTest, NffSceneShowsWhatRenderMakes) {
+    // SPEC §2.1: `luz view x.nff` reads NFF as `luz render` does (its resolution, --set f1).
+    const std::string nff = std::string(LUZ_SOURCE_DIR) + "/tests/scenes/nff/small.nff";
+    const std::vector<std::string> set = {"--set", "materials.f1.kd=[0,0,1]"};
+    std::vector<std::string> v_args = {nff, "--screenshot", "shot.png"};
+    std::vector<std::string> r_args = {"render", nff, "-o", "ref.png", "-q"};
+    v_args.insert(v_args.end(), set.begin(), set.end());
+    r_args.insert(r_args.end(), set.begin(), set.end());
+    const RunResult v = view(v_args);
+    ASSERT_EQ(v.status, 0) << v.err;
+    ASSERT_EQ(run_luz(r_args, dir_).status, 0);
+    const Image shot = read_image((dir_ / "shot.png").string());
+    const Image ref = read_image((dir_ / "ref.png").string());
+    ASSERT_EQ(ref.width, 48);
+    int different = 0;
+    for (int y = 0; y < ref.height; ++y)
+        for (int x = 0; x < ref.width; ++x) different += differs(shot, x, y, ref, x, y);
+    EXPECT_EQ(different, 0);
+}
+
 }  // namespace
 }  // namespace luz::test

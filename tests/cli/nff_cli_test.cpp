@@ -1,0 +1,112 @@
+// `luz render` on NFF scenes (SPEC §2.1): the file's resolution unless --width/--height,
+// --set on its materials f1…, --region and --aov as on any scene, and bad NFF refused with one
+// FILE:LINE line and nothing written.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli/run_luz.h"
+#include "cli/signal_luz.h"
+
+namespace luz::test {
+namespace {
+
+class NffCli : public TempDirTest {
+  protected:
+    void SetUp() override {
+        TempDirTest::SetUp();
+        std::filesystem::copy_file(std::string(LUZ_SOURCE_DIR) + "/tests/scenes/nff/small.nff",
+                                   dir_ / "small.nff");
+    }
+};
+
+/// The width and height a PNG's header gives.
+std::pair<int, int> png_size(const std::string& png) {
+    const auto be = [&](size_t at) {
+        return (int(uint8_t(png[at])) << 24) | (int(uint8_t(png[at + 1])) << 16) |
+               (int(uint8_t(png[at + 2])) << 8) | int(uint8_t(png[at + 3]));
+    };
+    return {be(16), be(20)};
+}
+
+TEST_F(NffCli, RendersAtTheFilesResolutionUnlessTold) {
+    const RunResult r = run_luz({"render", "small.nff", "--stats", "s.json"}, dir_);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(png_size(read_file(dir_ / "small.png")), std::make_pair(48, 32));
+    const auto stats = nlohmann::json::parse(read_file(dir_ / "s.json"));
+    EXPECT_EQ(stats["pipeline"], "raytrace");
+    EXPECT_GT(stats["rays"]["shadow"].get<int>(), 0);
+
+    const RunResult w =
+        run_luz({"render", "small.nff", "-o", "w.png", "--width", "20", "--height", "10"}, dir_);
+    ASSERT_EQ(w.status, 0) << w.err;
+    EXPECT_EQ(png_size(read_file(dir_ / "w.png")), std::make_pair(20, 10));
+}
+
+TEST_F(NffCli, SetChangesAMaterialByItsName) {
+    ASSERT_EQ(run_luz({"render", "small.nff", "-o", "a.png"}, dir_).status, 0);
+    const RunResult r =
+        run_luz({"render", "small.nff", "-o", "b.png", "--set", "materials.f1.kd=[0,0,1]"}, dir_);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(read_file(dir_ / "a.png"), read_file(dir_ / "b.png"));
+    const RunResult bad =
+        run_luz({"render", "small.nff", "-o", "c.png", "--set", "materials.f1.kd=2"}, dir_);
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_EQ(bad.err, "--set materials.f1.kd=2: must be in [0, 1], got 2\n");
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "c.png"));
+}
+
+TEST_F(NffCli, RegionAndAovWorkAsOnAnyScene) {
+    const RunResult r = run_luz(
+        {"render", "small.nff", "-o", "r.png", "--region", "8,4,40,28", "--aov", "depth,normal"},
+        dir_);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(png_size(read_file(dir_ / "r.png")), std::make_pair(32, 24));
+    EXPECT_TRUE(std::filesystem::exists(dir_ / "r.depth.png"));
+    EXPECT_TRUE(std::filesystem::exists(dir_ / "r.normal.png"));
+}
+
+TEST_F(NffCli, BadNffIsExit2WithOneLineAndNothingWritten) {
+    write_file(dir_ / "bad.nff",
+               "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 8 8\n"
+               "s 0 0 0\n");
+    const RunResult r = run_luz({"render", "bad.nff", "-o", "out.png"}, dir_);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err, "bad.nff:8: s: expected 4 numbers, got 3\n");
+    EXPECT_EQ(list_dir(dir_), (std::set<std::string>{"bad.nff", "small.nff"}));
+
+    write_file(dir_ / "late.nff", "s 0 0 0 1\nv\n");
+    const RunResult late = run_luz({"render", "late.nff"}, dir_);
+    EXPECT_EQ(late.status, 2);
+    EXPECT_EQ(count_lines(late.err), 1);
+    EXPECT_NE(late.err.find("late.nff:1: s: before \"v\""), std::string::npos) << late.err;
+}
+
+TEST_F(NffCli, CheckpointResumesToTheBitsOfAnUninterruptedRender) {
+    const std::string gears = std::string(LUZ_SOURCE_DIR) + "/scenes/spd/gears.nff";
+    const std::vector<std::string> common = {"render", gears,  "--width", "400",       "--height",
+                                             "400",    "--aa", "grid",    "--samples", "4"};
+    std::vector<std::string> plain = common, resumed = common;
+    plain.insert(plain.end(), {"-o", "plain.png", "-q"});
+    resumed.insert(resumed.end(), {"-o", "resumed.png", "--checkpoint", "g.ckpt", "-q"});
+    ASSERT_EQ(run_luz(plain, dir_).status, 0);
+    // Interrupted after 0.3 s (unless it finished first: it takes about 1 s), then resumed.
+    const Signalled s = signal_luz(resumed, dir_, SIGINT, after_seconds(0.3));
+    EXPECT_TRUE(s.sent);
+    if (s.sent && s.status != 0) {
+        EXPECT_EQ(s.status, 130) << s.err;
+        EXPECT_TRUE(std::filesystem::exists(dir_ / "g.ckpt"));
+        EXPECT_FALSE(std::filesystem::exists(dir_ / "resumed.png"));
+        const RunResult r = run_luz(resumed, dir_);
+        ASSERT_EQ(r.status, 0) << r.err;
+    }
+    EXPECT_EQ(read_file(dir_ / "resumed.png"), read_file(dir_ / "plain.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "g.ckpt"));
+}
+
+}  // namespace
+}  // namespace luz::test
