@@ -25,7 +25,7 @@ struct alignas(16) PrimBlock {
     static constexpr uint32_t kNotTriangle = 0xFFFFFFFFu;
     static constexpr uint32_t kPadding = 0xFFFFFFFEu;  ///< shape of an unused lane
     static constexpr uint32_t kSphere = 0xFFFFFFFDu;   ///< `triangle` of a world-form sphere
-    /// `triangle` of a shape within distance R of a line (a cylinder: axis_lanes_missed()).
+    /// `triangle` of a shape within distance R of a line (cylinder, cone: axis_lanes_missed()).
     static constexpr uint32_t kAroundAxis = 0xFFFFFFFCu;
 
     float v[3][3][kLanes];
@@ -85,10 +85,10 @@ inline unsigned intersect_triangles4(const WatertightRay& r, const PrimBlock& b,
 }
 
 /// The lanes `lanes` (axis lanes of b) whose shape the line of r surely misses. Lane k holds a
-/// shape every point of which lies within R of the line B + s·W (a cylinder of any transform:
-/// R² = max(|U|², |V|²) + |U·V| bounds |c·U + s·V|² on the unit disc): B in v[0][·][k], W in
-/// v[1][·][k], R_t² ≥ R²·(1 + 2⁻⁸) in v[2][0][k], a slack factor κ in v[2][1][k] and
-/// |B|₁ + R_t in v[2][2][k]. The line of r misses when its distance to the axis line,
+/// shape every point of which lies within R of the line B + s·W (a cylinder or cone of any
+/// transform: R² = max(|U|², |V|²) + |U·V| bounds |c·U + s·V|² on the unit disc): B in v[0][·][k],
+/// W in v[1][·][k], R_t² ≥ R²·(1 + 2⁻⁸) in v[2][0][k], a slack factor κ in v[2][1][k] and |B|₁ +
+/// R_t in v[2][2][k]. The line of r misses when its distance to the axis line,
 /// |(o − B)·n| / |n| with n = d × W, exceeds R: tested as (|q| − σ)² > R_t²·|n|², q = (o − B)·n,
 /// σ = κ·|d|₁·(|o|₁ + |B|₁ + R_t), far above the float rounding of q and n here and of the
 /// shape's own exact test (its ray carried to object space): a lane rejected here is one the

@@ -93,10 +93,9 @@ struct BlockTest {
         counters.primitive += static_cast<uint64_t>(lane_count(triangles & ~r.scalar));
     }
     if (const unsigned axis = b.axis_lanes() & lanes; axis != 0) {
-        // the shapes whose axis the ray passes far from: missed, one test each
-        const unsigned missed = axis_lanes_missed(b, axis, ray);
-        r.shapes &= ~missed;
-        counters.primitive += static_cast<uint64_t>(lane_count(missed));
+        // the shapes whose axis the ray passes far from: missed (a bounding test, four at once)
+        r.shapes &= ~axis_lanes_missed(b, axis, ray);
+        ++counters.bounds;
     }
     if (spheres != 0) {
         r.spheres = sphere_lanes_roots(b.spheres(spheres), ray, t_min >= 0);

@@ -35,12 +35,14 @@ PrimBlock padding_block() {
 }
 
 /// Lane k of b as a shape around the axis origin(M) + s·column(M, 2) whose points are
-/// c·U + s·V + z·W with c² + s² ≤ 1 (a cylinder: U, V, W the columns of M), for
+/// c·U + s·V + z·W with c² + s² ≤ 1 (a cylinder or a cone: every point of theirs lies within
+/// unit distance of the z axis in object space; U, V, W the columns of M), for
 /// axis_lanes_missed() (prim_block.h): R² = max(|U|², |V|²) + |U·V| in double, inflated by
 /// 2⁻⁸ and rounded up; the slack factor κ = 2⁻¹⁶·|W|₁·max(1, cond/16), cond the ratio of the
 /// longest to the shortest column (the exact test's rounding grows with it).
 void set_axis_lane(PrimBlock& b, int k, const Affine& M) {
-    const Vec3 U = column(M, 0), V = column(M, 1), W = column(M, 2), B = origin(M);
+    const Vec3 U = shapes::column(M, 0), V = shapes::column(M, 1), W = shapes::column(M, 2),
+               B = shapes::origin(M);
     const auto dot_d = [](const Vec3& a, const Vec3& c) {
         return double(a.x) * c.x + double(a.y) * c.y + double(a.z) * c.z;
     };
@@ -146,7 +148,8 @@ void build_bvh(BuiltScene& scene) {
                 b.v[1][0][k] = s.radius * s.radius;  // as world_sphere_roots() rounds it
                 b.v[1][1][k] = s.radius;
                 b.triangle[k] = PrimBlock::kSphere;
-            } else if (p.triangle == BvhPrim::kNotTriangle && s.type == ShapeType::cylinder) {
+            } else if (p.triangle == BvhPrim::kNotTriangle &&
+                       (s.type == ShapeType::cylinder || s.type == ShapeType::cone)) {
                 set_axis_lane(b, static_cast<int>(k), s.transform.world_from_object);
             }
         }
