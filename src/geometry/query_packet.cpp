@@ -128,7 +128,14 @@ void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_m
                        // eight lanes for the rays, or four for the primitives: the fewer tests
                        const uint32_t rays_in = static_cast<uint32_t>(lane_count(active));
                        const uint32_t blocks = (count + PrimBlock::kLanes - 1) / PrimBlock::kLanes;
-                       if (!lanes_share_axes || rays_in * blocks <= count) {
+                       // a leaf without triangles: its shapes have no packet test, but its
+                       // sphere and axis lanes meet each ray four at a time
+                       unsigned triangles = 0;
+                       for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned l) {
+                           triangles |= b.triangle_lanes() & l;
+                           return true;
+                       });
+                       if (!lanes_share_axes || rays_in * blocks <= count || triangles == 0) {
                            one_ray_at_a_time(first, count, active);
                        } else {
                            one_primitive_at_a_time(first, count, active);
