@@ -33,12 +33,10 @@ struct alignas(16) PrimBlock {
     uint32_t triangle[kLanes];
 
     Vec3 corner(int c, int k) const { return {v[c][0][k], v[c][1][k], v[c][2][k]}; }
-    /// Lanes holding triangles (bit k for lane k).
-    unsigned triangle_lanes() const {
-        const Lane4i t = triangles();
-        return lane_bits4((t != lane4i(kNotTriangle)) & (t != lane4i(kSphere)) &
-                          (t != lane4i(kAroundAxis)));
-    }
+    /// Lanes holding triangles (bit k for lane k): a triangle number is below 2³¹
+    /// (build_bvh() checks), the markers above have the top bit set, so the lanes are those
+    /// that are not negative as signed integers — one comparison.
+    unsigned triangle_lanes() const { return lane_bits4(triangles() >= lane4i(0)); }
     /// Lanes holding shapes around an axis (pre-tested by axis_lanes_missed()).
     unsigned axis_lanes() const { return lane_bits4(triangles() == lane4i(kAroundAxis)); }
     /// Lanes holding world-form spheres.

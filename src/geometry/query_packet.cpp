@@ -130,12 +130,13 @@ void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_m
                        const uint32_t blocks = (count + PrimBlock::kLanes - 1) / PrimBlock::kLanes;
                        // a leaf without triangles: its shapes have no packet test, but its
                        // sphere and axis lanes meet each ray four at a time
-                       unsigned triangles = 0;
-                       for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned l) {
-                           triangles |= b.triangle_lanes() & l;
-                           return true;
-                       });
-                       if (!lanes_share_axes || rays_in * blocks <= count || triangles == 0) {
+                       const auto no_triangles = [&] {
+                           return for_each_block(scene, first, count,
+                                                 [&](const PrimBlock& b, unsigned l) {
+                                                     return (b.triangle_lanes() & l) == 0;
+                                                 });
+                       };
+                       if (!lanes_share_axes || rays_in * blocks <= count || no_triangles()) {
                            one_ray_at_a_time(first, count, active);
                        } else {
                            one_primitive_at_a_time(first, count, active);

@@ -85,21 +85,22 @@ struct BlockTest {
                                                    IntersectCounters& counters) {
     BlockTest r;
     const unsigned triangles = b.triangle_lanes() & lanes;
-    const unsigned spheres = b.sphere_lanes() & lanes;
-    r.shapes = lanes & ~triangles & ~spheres;
+    r.shapes = lanes & ~triangles;
     if (triangles != 0) {
         r.hit = intersect_triangles4(w, b, t_min, t_max, r.t, r.b1, r.b2, r.scalar) & triangles;
         r.scalar &= triangles;
         counters.primitive += static_cast<uint64_t>(lane_count(triangles & ~r.scalar));
     }
-    if (const unsigned axis = b.axis_lanes() & lanes; axis != 0) {
+    if (r.shapes == 0) return r;  // a block of triangles only: the inner loop of every mesh
+    if (const unsigned axis = b.axis_lanes() & r.shapes; axis != 0) {
         // the shapes whose axis the ray passes far from: missed (a bounding test, four at once)
         r.shapes &= ~axis_lanes_missed(b, axis, ray);
         ++counters.bounds;
     }
-    if (spheres != 0) {
+    if (const unsigned spheres = b.sphere_lanes() & r.shapes; spheres != 0) {
         r.spheres = sphere_lanes_roots(b.spheres(spheres), ray, t_min >= 0);
-        r.shapes |= r.spheres.slow;  // offer_shape() / cross_shape() count these
+        // the slow lanes stay in `shapes`: offer_shape() / cross_shape() test and count them
+        r.shapes &= ~spheres | r.spheres.slow;
         counters.primitive += static_cast<uint64_t>(lane_count(spheres & ~r.spheres.slow));
     }
     return r;

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 
 #include "geometry/query_parts.h"
@@ -97,6 +98,8 @@ void build_bvh(BuiltScene& scene) {
         if (!is_bounded(s)) {
             scene.unbounded.push_back(shape);
         } else if (s.mesh) {
+            if (s.mesh->triangle_count() > 0x7FFFFFF0u)  // PrimBlock's markers: top bit set
+                throw std::length_error("a mesh of more than 2^31 - 16 triangles");
             for (size_t t = 0; t < s.mesh->triangle_count(); ++t) {
                 BvhPrim p{{}, {}, {}, shape, static_cast<uint32_t>(t)};
                 s.mesh->vertices(t, p.p0, p.p1, p.p2);
