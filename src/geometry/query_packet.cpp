@@ -128,7 +128,15 @@ void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_m
                        // eight lanes for the rays, or four for the primitives: the fewer tests
                        const uint32_t rays_in = static_cast<uint32_t>(lane_count(active));
                        const uint32_t blocks = (count + PrimBlock::kLanes - 1) / PrimBlock::kLanes;
-                       if (!lanes_share_axes || rays_in * blocks <= count) {
+                       // a leaf without triangles: its shapes have no packet test, but its
+                       // sphere and axis lanes meet each ray four at a time
+                       const auto no_triangles = [&] {
+                           return for_each_block(scene, first, count,
+                                                 [&](const PrimBlock& b, unsigned l) {
+                                                     return (b.triangle_lanes() & l) == 0;
+                                                 });
+                       };
+                       if (!lanes_share_axes || rays_in * blocks <= count || no_triangles()) {
                            one_ray_at_a_time(first, count, active);
                        } else {
                            one_primitive_at_a_time(first, count, active);

@@ -9,6 +9,7 @@
 #include "geometry/ray_triangle.h"
 #include "geometry/scene_query.h"
 #include "geometry/shapes.h"
+#include "geometry/sphere_group.h"
 #include "math/lane_count.h"
 #include "math/next_float.h"
 
@@ -65,10 +66,10 @@ inline void offer_triangle(const WatertightRay& w, const Vec3& p0, const Vec3& p
     }
 }
 
-/// The watertight test of the triangles among lanes `lanes` of BVH block b, four at a time
-/// (intersect_triangles4(); counted in counters): the lanes that hit in (t_min, t_max) at t
-/// with barycentrics b1, b2; those to test one by one by the double path (`scalar`); and the
-/// lanes that hold shapes, for the caller to test.
+/// The triangles among lanes `lanes` of BVH block b against r by the watertight test, four at
+/// a time (intersect_triangles4(); counted in counters): the lanes that hit in (t_min, t_max) at
+/// t with barycentrics b1, b2; those to test one by one by the double path (`scalar`); and the
+/// lanes that hold shapes (`shapes`, for test_shapes()).
 struct BlockTest {
     Lane4f t, b1, b2;
     unsigned hit = 0, scalar = 0, shapes = 0;
@@ -87,6 +88,33 @@ struct BlockTest {
     return r;
 }
 
+/// The shape lanes `shapes` of block b against r, up to the decision: its world-form spheres
+/// four at a time (sphere_lanes_roots(), ahead only when t_min ≥ 0: the lanes met at roots
+/// `spheres.t0`, `spheres.t1`, `spheres.hit`, counted), its shapes around an axis ruled out
+/// four at a time where axis_lanes_missed() can (one bounds test), and the lanes left to test
+/// one shape at a time (`one_by_one`: other shapes, the axis lanes not ruled out, the spheres
+/// needing world_sphere_roots()'s double path; counted by their tests).
+struct ShapeTest {
+    SphereGroupRoots spheres;
+    unsigned one_by_one = 0;
+};
+[[gnu::always_inline]] inline ShapeTest test_shapes(const PrimBlock& b, unsigned shapes,
+                                                    const Ray& ray, float t_min,
+                                                    IntersectCounters& counters) {
+    ShapeTest r;
+    r.one_by_one = shapes;
+    if (const unsigned axis = b.axis_lanes() & shapes; axis != 0) {
+        r.one_by_one &= ~axis_lanes_missed(b, axis, ray);
+        ++counters.bounds;
+    }
+    if (const unsigned spheres = b.sphere_lanes() & r.one_by_one; spheres != 0) {
+        r.spheres = sphere_lanes_roots(b.spheres(spheres), ray, t_min >= 0);
+        r.one_by_one &= ~spheres | r.spheres.slow;
+        counters.primitive += static_cast<uint64_t>(lane_count(spheres & ~r.spheres.slow));
+    }
+    return r;
+}
+
 /// visit(block, lanes) for each block of the leaf of slots first … first + count − 1, with the
 /// lanes the leaf uses, until it returns false; whether every block was visited.
 template <class Visit>
@@ -98,6 +126,23 @@ template <class Visit>
         if (!visit(*b, left >= L ? (1u << L) - 1 : (1u << left) - 1)) return false;
         if (left <= L) return true;
     }
+}
+
+/// The shape lanes `shapes` of BVH block b against r, by Best. Out of line: a mesh's blocks
+/// hold none, and their loop stays as small as it was.
+[[gnu::noinline]] inline void offer_block_shapes(const BuiltScene& scene, const PrimBlock& b,
+                                                 unsigned shapes, const Ray& r, float t_min,
+                                                 Best& best, IntersectCounters& counters) {
+    const ShapeTest test = test_shapes(b, shapes, r, t_min, counters);
+    for (unsigned hit = test.spheres.hit; hit != 0; hit &= hit - 1) {
+        const int k = __builtin_ctz(hit);
+        float t;  // the root intersect() would choose
+        if (nearest_root(test.spheres.t0[k], test.spheres.t1[k], t_min, best.limit(), t) &&
+            best.better(t, b.shape[k], 0))
+            best.take(t, b.shape[k], 0, 0.0f, 0.0f, part_side);
+    }
+    for (unsigned s = test.one_by_one; s != 0; s &= s - 1)
+        offer_shape(scene, b.shape[__builtin_ctz(s)], r, t_min, best, counters);
 }
 
 /// Lanes `lanes` of BVH block b against r (w: r prepared for the watertight test), by Best.
@@ -118,8 +163,7 @@ template <class Visit>
         offer_triangle(w, b.corner(0, k), b.corner(1, k), b.corner(2, k), b.shape[k], b.triangle[k],
                        t_min, best, counters);
     }
-    for (unsigned s = test.shapes; s != 0; s &= s - 1)
-        offer_shape(scene, b.shape[__builtin_ctz(s)], r, t_min, best, counters);
+    if (test.shapes != 0) offer_block_shapes(scene, b, test.shapes, r, t_min, best, counters);
 }
 
 /// Transparent crossings counted per material; their product is taken in material order.
@@ -196,6 +240,28 @@ inline bool cross_triangle(const BuiltScene& scene, const Materials& materials,
     return add_crossings(materials, scene.shapes[i].mesh->materials[tri], 1, crossings);
 }
 
+/// The shape lanes `shapes` of BVH block b against segment r; false if one is opaque and met.
+/// Out of line, as offer_block_shapes().
+[[gnu::noinline]] inline bool cross_block_shapes(const BuiltScene& scene,
+                                                 const Materials& materials, const PrimBlock& b,
+                                                 unsigned shapes, const Ray& r, float t_min,
+                                                 float t_max, Crossings& crossings,
+                                                 IntersectCounters& counters) {
+    const ShapeTest test = test_shapes(b, shapes, r, t_min, counters);
+    for (unsigned hit = test.spheres.hit; hit != 0; hit &= hit - 1) {
+        const int k = __builtin_ctz(hit);  // as crossings_at_roots() counts them
+        const uint32_t n = roots_within(test.spheres.t0[k], test.spheres.t1[k], t_min, t_max);
+        if (n > 0 && !add_crossings(materials, scene.shapes[b.shape[k]].material, n, crossings))
+            return false;
+    }
+    for (unsigned s = test.one_by_one; s != 0; s &= s - 1) {
+        if (!cross_shape(scene, materials, b.shape[__builtin_ctz(s)], r, t_min, t_max, crossings,
+                         counters))
+            return false;
+    }
+    return true;
+}
+
 /// Lanes `lanes` of BVH block b against segment r; false if it meets an opaque surface.
 [[gnu::always_inline]] inline bool cross_block(const BuiltScene& scene, const Materials& materials,
                                                const PrimBlock& b, unsigned lanes, const Ray& r,
@@ -213,12 +279,8 @@ inline bool cross_triangle(const BuiltScene& scene, const Materials& materials,
                             b.shape[k], b.triangle[k], t_min, t_max, crossings, counters))
             return false;
     }
-    for (unsigned s = test.shapes; s != 0; s &= s - 1) {
-        if (!cross_shape(scene, materials, b.shape[__builtin_ctz(s)], r, t_min, t_max, crossings,
-                         counters))
-            return false;
-    }
-    return true;
+    return test.shapes == 0 || cross_block_shapes(scene, materials, b, test.shapes, r, t_min, t_max,
+                                                  crossings, counters);
 }
 
 // The strategies: each answers nearest_hit() and transmittance() (scene_query.h) alone.

@@ -2,8 +2,11 @@
 // over its bounded shapes and mesh triangles.
 #include "geometry/scene.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 
 #include "geometry/query_parts.h"
@@ -30,6 +33,36 @@ PrimBlock padding_block() {
         b.triangle[k] = PrimBlock::kNotTriangle;
     }
     return b;
+}
+
+/// Lane k of b as a shape around the axis origin(M) + s·column(M, 2) whose points are
+/// c·U + s·V + z·W with c² + s² ≤ 1 (a cylinder or a cone: every point of theirs lies within
+/// unit distance of the z axis in object space; U, V, W the columns of M), for
+/// axis_lanes_missed() (prim_block.h): R² = max(|U|², |V|²) + |U·V| in double, inflated by
+/// 2⁻⁸ and rounded up; the slack factor κ = 2⁻¹⁶·|W|₁·max(1, cond/16), cond the ratio of the
+/// longest to the shortest column (the exact test's rounding grows with it).
+void set_axis_lane(PrimBlock& b, int k, const Affine& M) {
+    const Vec3 U = shapes::column(M, 0), V = shapes::column(M, 1), W = shapes::column(M, 2),
+               B = shapes::origin(M);
+    const auto dot_d = [](const Vec3& a, const Vec3& c) {
+        return double(a.x) * c.x + double(a.y) * c.y + double(a.z) * c.z;
+    };
+    const double uu = dot_d(U, U), vv = dot_d(V, V), ww = dot_d(W, W);
+    const double R2 = (std::max(uu, vv) + std::fabs(dot_d(U, V))) * (1.0 + 0x1p-8);
+    const float Rt2 = std::nextafter(static_cast<float>(R2), std::numeric_limits<float>::max());
+    const float Rt = std::nextafter(std::sqrt(Rt2), std::numeric_limits<float>::max());
+    const double longest = std::sqrt(std::max({uu, vv, ww})),
+                 shortest = std::sqrt(std::min({uu, vv, ww}));
+    const double cond = shortest > 0 ? longest / shortest : 1e30;
+    const double w1 = std::fabs(W.x) + std::fabs(W.y) + std::fabs(W.z);
+    for (int a = 0; a < 3; ++a) {
+        b.v[0][a][k] = B[a];
+        b.v[1][a][k] = W[a];
+    }
+    b.v[2][0][k] = Rt2;
+    b.v[2][1][k] = static_cast<float>(0x1p-16 * w1 * std::max(1.0, cond / 16));
+    b.v[2][2][k] = std::fabs(B.x) + std::fabs(B.y) + std::fabs(B.z) + Rt;
+    b.triangle[k] = PrimBlock::kAroundAxis;
 }
 
 }  // namespace
@@ -65,6 +98,8 @@ void build_bvh(BuiltScene& scene) {
         if (!is_bounded(s)) {
             scene.unbounded.push_back(shape);
         } else if (s.mesh) {
+            if (s.mesh->triangle_count() > 0x7FFFFFF0u)  // PrimBlock's markers: top bit set
+                throw std::length_error("a mesh of more than 2^31 - 16 triangles");
             for (size_t t = 0; t < s.mesh->triangle_count(); ++t) {
                 BvhPrim p{{}, {}, {}, shape, static_cast<uint32_t>(t)};
                 s.mesh->vertices(t, p.p0, p.p1, p.p2);
@@ -109,6 +144,17 @@ void build_bvh(BuiltScene& scene) {
                 for (int a = 0; a < 3; ++a) b.v[c][a][k] = corners[c][a];
             b.shape[k] = p.shape;
             b.triangle[k] = p.triangle;
+            const Shape& s = scene.shapes[p.shape];
+            if (p.triangle == BvhPrim::kNotTriangle && s.world_form &&
+                s.type == ShapeType::sphere) {  // tested four at a time (query_parts.h)
+                for (int a = 0; a < 3; ++a) b.v[0][a][k] = s.centre[a];
+                b.v[1][0][k] = s.radius * s.radius;  // as world_sphere_roots() rounds it
+                b.v[1][1][k] = s.radius;
+                b.triangle[k] = PrimBlock::kSphere;
+            } else if (p.triangle == BvhPrim::kNotTriangle &&
+                       (s.type == ShapeType::cylinder || s.type == ShapeType::cone)) {
+                set_axis_lane(b, static_cast<int>(k), s.transform.world_from_object);
+            }
         }
         return at;
     });

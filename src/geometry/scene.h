@@ -52,11 +52,15 @@ struct BuiltScene {
     std::vector<uint32_t> direct_others;  ///< the shapes in neither, in scene order
     double bvh_build_seconds = 0;
 
-    /// The primitive in slot s of the BVH.
+    /// The primitive in slot s of the BVH (a sphere lane as a whole shape: its corners are
+    /// meaningless).
     BvhPrim bvh_prim(uint32_t s) const {
         const PrimBlock& b = bvh_blocks[s / PrimBlock::kLanes];
         const int k = static_cast<int>(s % PrimBlock::kLanes);
-        return {b.corner(0, k), b.corner(1, k), b.corner(2, k), b.shape[k], b.triangle[k]};
+        const bool shape =
+            b.triangle[k] == PrimBlock::kSphere || b.triangle[k] == PrimBlock::kAroundAxis;
+        const uint32_t tri = shape ? BvhPrim::kNotTriangle : b.triangle[k];
+        return {b.corner(0, k), b.corner(1, k), b.corner(2, k), b.shape[k], tri};
     }
     /// Bytes held by the BVH: nodes and primitives (the leaf order is not kept).
     size_t bvh_bytes() const {

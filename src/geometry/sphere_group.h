@@ -1,5 +1,6 @@
 // Spheres in world form side by side, four to a group, and their roots with one ray for all
-// four at once (SSE2): how the scene queries test a small scene's spheres (query_direct.cpp).
+// four at once (SSE2): how the scene queries test spheres (a small scene's in query_direct.cpp,
+// the BVH leaves' sphere lanes in query_parts.h).
 // Every lane runs the steps of world_sphere_roots() (ray_sphere.h) on Float4 lanes, the same
 // template code, so its roots are the same bits; a lane that needs that function's double path
 // is flagged, for the caller to test that sphere alone.
@@ -49,29 +50,39 @@ inline int add_to_sphere_groups(std::vector<SphereGroup>& groups, const Shape& s
     return static_cast<int>(groups.size() - 1) * SphereGroup::kLanes + lane;
 }
 
-/// sphere_group_roots() lane by lane with world_sphere_roots(), its double path included (no
+/// Four spheres in world form by lane, wherever they are stored (a SphereGroup, or the sphere
+/// lanes of a BVH block, prim_block.h): centres, radius · radius and radius; `used` the lanes
+/// to test (the others may hold anything).
+struct SphereLanes {
+    const float *cx, *cy, *cz, *rr, *radius;
+    unsigned used;
+};
+
+/// sphere_lanes_roots() lane by lane with world_sphere_roots(), its double path included (no
 /// lane is `slow`): the portable version, and the reference of the tests.
-inline SphereGroupRoots sphere_group_roots_one_by_one(const SphereGroup& g, const Ray& r) {
+inline SphereGroupRoots sphere_lanes_roots_one_by_one(const SphereLanes& g, const Ray& r) {
     SphereGroupRoots out;
-    for (int k = 0; k < g.count; ++k) {
+    for (unsigned lanes = g.used; lanes != 0; lanes &= lanes - 1) {
+        const int k = __builtin_ctz(lanes);
         const Vec3 centre{g.cx[k], g.cy[k], g.cz[k]};
         if (world_sphere_roots(centre, g.radius[k], r, out.t0[k], out.t1[k])) out.hit |= 1u << k;
     }
     return out;
 }
 
-/// The roots of r with the group's spheres, four at once with SSE2 (else one by one): the
-/// steps of world_sphere_roots() with F = Float4, a = |d|² and 1/a shared by the lanes.
+/// The roots of r with the spheres of lanes g.used, four at once with SSE2 (else one by one):
+/// the steps of world_sphere_roots() with F = Float4, a = |d|² and 1/a shared by the lanes.
 /// `ahead_only`: for a caller that takes roots at t > 0 only (the scene queries: t_min = 0), a
 /// lane whose two roots are both ≤ 0 is not reported either: an origin outside the sphere
 /// (c > 0) moving away from its centre (b > 0) gives q = −(b + √disc) < 0, so c/q and q/a are
 /// both negative (or −0). Rays spawned on a sphere leave it so; when no other lane is near,
 /// their test ends before the square root and division. (The portable version reports such
 /// lanes all the same: the caller's t_min discards their roots alike.)
-inline SphereGroupRoots sphere_group_roots(const SphereGroup& g, const Ray& r,
-                                           bool ahead_only = false) {
+[[gnu::always_inline]] inline SphereGroupRoots sphere_lanes_roots(const SphereLanes& g,
+                                                                  const Ray& r,
+                                                                  bool ahead_only = false) {
     SphereGroupRoots out;
-    const unsigned used = (1u << g.count) - 1;
+    const unsigned used = g.used;
     const Lane3<float> d1{r.direction.x, r.direction.y, r.direction.z};
     const float a = dot(d1, d1);
     if (!(a > 0)) {  // world_sphere_roots() goes to double for every sphere
@@ -106,9 +117,23 @@ inline SphereGroupRoots sphere_group_roots(const SphereGroup& g, const Ray& r,
     t0.store(out.t0);
     t1.store(out.t1);
 #else
-    out = sphere_group_roots_one_by_one(g, r);
+    (void)ahead_only;
+    out = sphere_lanes_roots_one_by_one(g, r);
 #endif
     return out;
+}
+
+/// The lanes of group g.
+inline SphereLanes lanes_of(const SphereGroup& g) {
+    return {g.cx, g.cy, g.cz, g.rr, g.radius, (1u << g.count) - 1};
+}
+/// sphere_lanes_roots() of group g.
+inline SphereGroupRoots sphere_group_roots_one_by_one(const SphereGroup& g, const Ray& r) {
+    return sphere_lanes_roots_one_by_one(lanes_of(g), r);
+}
+inline SphereGroupRoots sphere_group_roots(const SphereGroup& g, const Ray& r,
+                                           bool ahead_only = false) {
+    return sphere_lanes_roots(lanes_of(g), r, ahead_only);
 }
 
 }  // namespace luz

@@ -10,9 +10,11 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <random>
 
+#include "geometry/prim_block.h"
 #include "geometry/scene.h"
 #include "geometry/scene_query.h"
 #include "geometry_fixtures.h"
@@ -160,7 +162,9 @@ struct RandomRays {
 };
 
 /// Runs `rays` random rays through both accelerations; every answer must be the same.
-void expect_bvh_equals_brute_force(const SceneDesc& desc, int rays) {
+/// `fewer_tests`: the BVH must also test far fewer primitives (not so where large overlapping
+/// shapes fill the scene: `none` tests each behind its own box, a BVH leaf all its lanes).
+void expect_bvh_equals_brute_force(const SceneDesc& desc, int rays, bool fewer_tests = true) {
     const BuiltScene bvh = build_scene(desc);
     ASSERT_TRUE(bvh.has_bvh);
     ASSERT_GT(bvh.bvh.nodes().size(), 1u);
@@ -205,7 +209,7 @@ void expect_bvh_equals_brute_force(const SceneDesc& desc, int rays) {
     EXPECT_GT(hits, rays / 5);
     EXPECT_GT(shadowed, rays / 20);
     EXPECT_GT(partial, rays / 100);
-    EXPECT_LT(cb.primitive * 5, ca.primitive);
+    if (fewer_tests) EXPECT_LT(cb.primitive * 5, ca.primitive);
     ::testing::Test::RecordProperty("primitive_tests_bvh", std::to_string(cb.primitive));
     ::testing::Test::RecordProperty("primitive_tests_all", std::to_string(ca.primitive));
 }
@@ -217,6 +221,76 @@ TEST(BvhEqualsBruteForce, RandomMeshesAndShapes) {
     objects.push_back(box({2, -3, -3}, {3, -1, 0}, 2));
     objects.push_back(plane({0, -5, 0}, 2));
     expect_bvh_equals_brute_force(scene_with(objects), 100000);
+}
+
+/// Thin and thick cylinders and cones (capped or open, opaque or glass), sheared, mirrored and
+/// scaled by the user transforms, among spheres: the cylinders are axis lanes (prim_block.h)
+/// pre-tested four at a time.
+std::vector<ObjectDesc> cylinder_field(Rng& rng) {
+    std::vector<ObjectDesc> objects;
+    const auto transforms = test::user_transforms();
+    for (int i = 0; i < 300; ++i) {
+        ObjectDesc o;
+        o.type = i % 6 == 1 ? ShapeType::cone : ShapeType::cylinder;
+        o.base = random_point(rng, -4, 4);
+        o.axis = random_direction(rng);
+        o.radius = i % 3 == 0 ? uniform(rng, 0.3f, 1.0f) : uniform(rng, 0.01f, 0.1f);
+        o.height = i % 5 == 0 ? uniform(rng, 2.0f, 8.0f) : uniform(rng, 0.2f, 1.5f);
+        o.caps = i % 2 == 0;
+        o.material = i % 7 == 0 ? 1 : 0;
+        if (i % 4 == 0) o.transform = transforms[i / 4 % transforms.size()].affine;
+        objects.push_back(o);
+    }
+    for (int i = 0; i < 40; ++i)
+        objects.push_back(sphere(random_point(rng, -4, 4), uniform(rng, 0.1f, 0.6f), i % 3));
+    return objects;
+}
+
+TEST(BvhEqualsBruteForce, CylindersAmongSpheres) {
+    Rng rng(3);
+    expect_bvh_equals_brute_force(scene_with(cylinder_field(rng)), 100000, false);
+}
+
+// axis_lanes_missed() rejects a lane only when the exact test misses the whole line, and it
+// rejects many lanes (rays through the cylinders' surfaces and
+// just outside them included).
+TEST(PrimBlock, AxisLanesMissedOnlyWhatTheExactTestMisses) {
+    Rng rng(4);
+    const BuiltScene scene = build_scene(scene_with(cylinder_field(rng)));
+    ASSERT_FALSE(scene.direct);
+    std::vector<std::pair<const PrimBlock*, int>> lanes;
+    for (const PrimBlock& b : scene.bvh_blocks)
+        for (unsigned a = b.axis_lanes(); a != 0; a &= a - 1)
+            lanes.push_back({&b, __builtin_ctz(a)});
+    ASSERT_EQ(lanes.size(), 300u);
+    const float inf = std::numeric_limits<float>::infinity();
+    int rejected = 0, tested = 0, grazing_hits = 0;
+    for (int k = 0; k < 200000; ++k) {
+        const auto [b, lane] = lanes[rng() % lanes.size()];
+        const Shape& s = scene.shapes[b->shape[lane]];
+        ASSERT_TRUE(s.type == ShapeType::cylinder || s.type == ShapeType::cone);
+        // aimed at a point on (or just off) the side or a rim, or anywhere
+        const float phi = uniform(rng, 0, 6.2831853f);
+        float rho = k % 3 == 0 ? 1.0f : uniform(rng, 0.99f, 1.01f);
+        float z = k % 5 == 0 ? 1.0f : uniform(rng, 0, 1);
+        if (s.type == ShapeType::cone) {  // radius 1 − z
+            z = k % 5 == 0 ? 0.0f : z;
+            rho *= 1 - z;
+        }
+        const Vec3 target =
+            s.transform.world_from_object.point({rho * std::cos(phi), rho * std::sin(phi), z});
+        Ray r{random_point(rng, -6, 6), random_direction(rng)};
+        if (k % 2 == 0) r.direction = (target - r.origin) * uniform(rng, 0.1f, 3.0f);
+        const bool missed = (axis_lanes_missed(*b, 1u << lane, r) >> lane) & 1u;
+        Hit h;
+        const bool met = intersect(s, r, -inf, inf, h);
+        ++tested;
+        rejected += missed;
+        grazing_hits += met && rho != 1.0f;
+        if (missed) ASSERT_FALSE(met) << "ray " << k << " lane " << lane;
+    }
+    EXPECT_GT(rejected, tested / 3);
+    EXPECT_GT(grazing_hits, 1000);
 }
 
 TEST(BvhEqualsBruteForce, AllTrianglesInOnePlane) {
@@ -740,6 +814,19 @@ TEST(Bvh, SceneLeavesStartBlocksAndHoldEachPrimitiveOnce) {
                 if (p.triangle == BvhPrim::kNotTriangle) {
                     EXPECT_FALSE(mesh);
                     ++seen[p.shape][0];
+                    // a world-form sphere is a sphere lane (tested four at a time), by its
+                    // centre, radius² and radius; other shapes are tested one by one
+                    const Shape& s = scene.shapes[p.shape];
+                    const PrimBlock& b = scene.bvh_blocks[slot / 4];
+                    const int k = static_cast<int>(slot % 4);
+                    const bool sphere_lane = (b.sphere_lanes() >> k) & 1u;
+                    EXPECT_EQ(sphere_lane, s.world_form && s.type == ShapeType::sphere) << slot;
+                    EXPECT_FALSE((b.triangle_lanes() >> k) & 1u);
+                    if (sphere_lane) {
+                        EXPECT_TRUE(b.corner(0, k) == s.centre);
+                        EXPECT_EQ(b.v[1][0][k], s.radius * s.radius);
+                        EXPECT_EQ(b.v[1][1][k], s.radius);
+                    }
                     continue;
                 }
                 ASSERT_TRUE(mesh);

@@ -128,6 +128,56 @@ TEST(PrimBlock, TriangleLanesAndPaddingLanes) {
         b.triangle[k] = k == 2 ? PrimBlock::kNotTriangle : static_cast<uint32_t>(k);
     }
     EXPECT_EQ(b.triangle_lanes(), 0b1011u);
+    EXPECT_EQ(b.sphere_lanes(), 0u);
+    b.triangle[0] = PrimBlock::kSphere;
+    EXPECT_EQ(b.triangle_lanes(), 0b1010u);
+    EXPECT_EQ(b.sphere_lanes(), 0b0001u);
+}
+
+// A block's sphere lanes (centre, radius², radius by lane) give world_sphere_roots()'s roots,
+// lane for lane, whatever the other lanes hold (triangles, padding).
+TEST(PrimBlock, SphereLanesGiveTheScalarRoots) {
+    Rng rng(7);
+    int hits = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+        PrimBlock b;
+        const float nan = std::numeric_limits<float>::quiet_NaN();
+        for (auto& corner : b.v)
+            for (auto& axis : corner)
+                for (float& x : axis) x = nan;
+        Vec3 centre[4];
+        float radius[4];
+        for (int k = 0; k < 4; ++k) {
+            centre[k] = random_point(rng, -2.0f, 2.0f);
+            radius[k] = uniform(rng, 0.05f, 1.0f);
+            b.shape[k] = static_cast<uint32_t>(k);
+            b.triangle[k] = k == 3 ? 0u : PrimBlock::kSphere;  // lane 3: a (NaN) triangle
+            for (int a = 0; a < 3; ++a) b.v[0][a][k] = centre[k][a];
+            b.v[1][0][k] = radius[k] * radius[k];
+            b.v[1][1][k] = radius[k];
+        }
+        const unsigned spheres = b.sphere_lanes();
+        ASSERT_EQ(spheres, 0b0111u);
+        // rays from outside and from a sphere's surface (the double path)
+        Vec3 o = random_point(rng, -4.0f, 4.0f);
+        if (trial % 4 == 0) o = centre[0] + random_direction(rng) * radius[0];
+        Vec3 d = random_direction(rng);
+        if (trial % 2 == 1) d = normalize(centre[trial % 3] + random_direction(rng) - o);
+        const Ray r{o, d * uniform(rng, 0.5f, 2.0f)};
+        const SphereGroupRoots q = sphere_lanes_roots(b.spheres(spheres), r);
+        for (int k = 0; k < 3; ++k) {
+            float t0 = 0, t1 = 0;
+            const bool met = world_sphere_roots(centre[k], radius[k], r, t0, t1);
+            if ((q.slow >> k) & 1u) continue;  // the caller tests it alone
+            ASSERT_EQ(((q.hit >> k) & 1u) != 0, met) << trial << " lane " << k;
+            if (!met) continue;
+            ++hits;
+            EXPECT_EQ(bits(q.t0[k]), bits(t0));
+            EXPECT_EQ(bits(q.t1[k]), bits(t1));
+        }
+        EXPECT_EQ((q.hit | q.slow) & ~spheres, 0u);
+    }
+    EXPECT_GT(hits, 300);
 }
 
 }  // namespace
