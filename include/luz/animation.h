@@ -33,7 +33,8 @@ class Animation {
     SceneText text_;
     std::vector<Override> overrides_;
     SceneDesc first_;
-    std::shared_ptr<MeshCache> meshes_;
+    struct Meshes;  ///< the OBJ files read (api/animation.cpp)
+    std::shared_ptr<Meshes> meshes_;
 };
 
 /// Frames first … end−1.
@@ -56,5 +57,6 @@ std::string frame_path(const std::string& path, int f);
 /// statistics with its number under `frame`. `stats[i]` is frame `numbers[i]` of `desc`.
 std::string animation_stats_json(const std::vector<RenderStats>& stats,
                                  const std::vector<int>& numbers, const SceneDesc& desc);
+
 
 }  // namespace luz

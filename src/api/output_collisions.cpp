@@ -4,7 +4,8 @@
 #include <utility>
 
 #include "image/output_target.h"
-#include "luz/output.h"
+#include "engine/luz_engine.h"
+#include "scene/text_files.h"
 
 namespace luz {
 

@@ -1,5 +1,5 @@
 // Ray tree → JSON.
-#include "api/ray_tree_json.h"
+#include "luz/output.h"
 
 #include <cmath>
 #include <nlohmann/json.hpp>

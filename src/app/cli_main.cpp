@@ -15,6 +15,7 @@
 #include "app/signals.h"
 #include "app/standard_output.h"
 #include "app/view_command.h"
+#include "app/list_commands.h"
 #include "luz/luz.h"
 
 #ifndef LUZ_VERSION

@@ -1,5 +1,5 @@
-// ProgressBar (src/render/progress.h): the line it draws, when it draws, and its thread safety.
-#include "render/progress.h"
+// ProgressBar (src/app/progress_bar.h): the line it draws, when it draws, and its thread safety.
+#include "app/progress_bar.h"
 
 #include <gtest/gtest.h>
 
