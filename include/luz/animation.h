@@ -58,5 +58,4 @@ std::string frame_path(const std::string& path, int f);
 std::string animation_stats_json(const std::vector<RenderStats>& stats,
                                  const std::vector<int>& numbers, const SceneDesc& desc);
 
-
 }  // namespace luz

@@ -124,7 +124,6 @@ class EditableScene {
     BuildCounts retired_;  ///< builds of the scenes replaced so far
 };
 
-
 /// Lets `desc` share `base`'s loaded meshes where they came out the same (a reload of the same
 /// OBJ file, e.g. for other overrides), so that needs_rebuild(), which compares meshes by
 /// identity, sees equal objects as equal.

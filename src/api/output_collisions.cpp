@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <utility>
 
-#include "image/output_target.h"
 #include "engine/luz_engine.h"
+#include "image/output_target.h"
 #include "scene/text_files.h"
 
 namespace luz {

@@ -1,10 +1,11 @@
 // The public Scene: a built scene shared by its copies, its BVH built on the first ray-traced
 // render, and build counters (include/luz/scene.h).
+#include "geometry/scene.h"
+
 #include <mutex>
 #include <nlohmann/json.hpp>
 
 #include "api/built_scene.h"
-#include "geometry/scene.h"
 #include "luz/json.h"
 #include "luz/scene.h"
 #include "scene/mesh_data.h"

@@ -12,10 +12,10 @@
 
 #include "app/cli_options.h"
 #include "app/figures_command.h"
+#include "app/list_commands.h"
 #include "app/signals.h"
 #include "app/standard_output.h"
 #include "app/view_command.h"
-#include "app/list_commands.h"
 #include "luz/luz.h"
 
 #ifndef LUZ_VERSION

@@ -18,27 +18,27 @@ namespace luz {
 namespace {
 
 /// The files of one rendered frame: the refinement mask, the image, its per-term images and,
-/// with the last frame, the statistics. commit() writes them all to temporary files, the
-/// streams among them, then renames the others into place: a failure leaves none of them.
+/// with the last frame, the statistics, each written to a temporary file as it is encoded.
+/// commit() writes the streams among them, then renames the others into place: a failure
+/// leaves none of them.
 struct FrameFiles {
-    std::vector<std::pair<std::string, std::string>> files;
+    PendingOutputs files;
 
     /// A frame rendered whole (terms, mask, a format other than PNG).
     FrameFiles(const Frame& frame, const std::string& out, const std::string& mask_path,
                Encoding encoding) {
-        if (!mask_path.empty()) add(mask_path, encode_image(mask_path, frame_aa_mask(frame), Encoding::linear));
+        if (!mask_path.empty())
+            add(mask_path, encode_image(mask_path, frame_aa_mask(frame), Encoding::linear));
         for (auto& [path, bytes] : encode_frame_files(frame, out, encoding))
             add(path, std::move(bytes));
     }
     /// A frame rendered straight into a PNG file (render_png()).
     FrameFiles(PngFrame& frame, const std::string& out) { add(out, std::move(frame.png)); }
-    void add(const std::string& path, std::string&& bytes) {
-        files.emplace_back(path, std::move(bytes));
-    }
+    void add(const std::string& path, std::string&& bytes) { files.add(path, std::move(bytes)); }
     /// Throws Interrupted when a signal stops a stream's writing, FileError on failure.
     void commit() {
         try {
-            write_files_together(std::move(files), &interrupt_flag());
+            files.commit(&interrupt_flag());
         } catch (const WriteCancelled&) {
             throw_if_interrupted();
             throw;

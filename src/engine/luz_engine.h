@@ -3,6 +3,7 @@
 // processes, the checks of every file a render touches, and the files the loader reads.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -50,6 +51,26 @@ Frame render(const Scene& scene, const Settings& settings, const RenderOptions& 
              const EngineHooks& hooks);
 PngFrame render_png(const Scene& scene, const Settings& settings, const RenderOptions& options,
                     Encoding encoding, const EngineHooks& hooks);
+
+/// Outputs written to temporary files as they are added (so that a signal during a later
+/// encoding finds them there), renamed into place together by commit(); destroyed before
+/// commit(), or on a failure, they leave no file.
+class PendingOutputs {
+  public:
+    PendingOutputs();
+    ~PendingOutputs();
+    PendingOutputs(const PendingOutputs&) = delete;
+    PendingOutputs& operator=(const PendingOutputs&) = delete;
+    /// Writes `bytes` to a temporary file beside `path` (a stream: kept until commit()).
+    void add(const std::string& path, std::string bytes);
+    /// Writes the streams, then renames the others into place (commit_together()). Throws
+    /// FileError (WriteCancelled when `cancel` is set while a stream waits for a reader).
+    void commit(const std::atomic<bool>* cancel);
+
+  private:
+    struct Files;
+    std::unique_ptr<Files> files_;
+};
 
 /// Checks before any work that `path` can be written: not a folder (a symlink to one
 /// included), and a missing file's folder exists. A device, FIFO or descriptor passes (it is

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "math/bounds.h"
-#include "math/ray.h"
 #include "luz/affine.h"
 #include "luz/vec3.h"
+#include "math/bounds.h"
+#include "math/ray.h"
 
 namespace luz {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "luz/scene.h"
 #include "luz/json.h"  // kMaxJsonNesting, load_scene_value()
+#include "luz/scene.h"
 
 namespace luz::python {
 

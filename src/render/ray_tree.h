@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "geometry/hit.h"
-#include "luz/ray_tree.h"
 #include "geometry/scene.h"
+#include "luz/ray_tree.h"
 #include "math/vec3.h"
 #include "render/recursion.h"
 #include "shading/shade.h"

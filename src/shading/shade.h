@@ -33,7 +33,6 @@ struct ShadingPoint {
     const Material* material = nullptr;
 };
 
-
 /// The terms that add up to shade()'s colour: ambient + Σ_j (diffuse_j + specular_j).
 struct ShadeTerms {
     Rgb ambient;                 ///< Ia·Ka

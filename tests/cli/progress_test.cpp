@@ -1,6 +1,4 @@
 // ProgressBar (src/app/progress_bar.h): the line it draws, when it draws, and its thread safety.
-#include "app/progress_bar.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +6,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "app/progress_bar.h"
 
 namespace luz {
 namespace {
