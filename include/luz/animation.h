@@ -33,7 +33,8 @@ class Animation {
     SceneText text_;
     std::vector<Override> overrides_;
     SceneDesc first_;
-    std::shared_ptr<MeshCache> meshes_;
+    struct Meshes;  ///< the OBJ files read (api/animation.cpp)
+    std::shared_ptr<Meshes> meshes_;
 };
 
 /// Frames first … end−1.

@@ -1,20 +1,13 @@
 // luz's public API, part 3: outputs. A frame to an image file (PNG, PPM, PFM, EXR by extension,
-// written atomically), its statistics as JSON, and the checks made before a long render.
+// written atomically), its statistics and ray trees as JSON, and the output path's check.
 #pragma once
 
 #include <atomic>
 #include <cstdint>
-#include <mutex>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "api/memory_check.h"
-#include "api/ray_tree_json.h"
-#include "api/stats_json.h"
-#include "image/atomic_file.h"
-#include "image/image_io.h"
 #include "luz/render.h"
 
 namespace luz {
@@ -24,46 +17,11 @@ namespace luz {
 /// Throws SceneError.
 void check_output_path(const std::string& path, const char* origin);
 
-/// Checks before any work that `path` can be written: not a folder (a symlink to one
-/// included), and a missing file's folder exists. A device, FIFO or descriptor passes (it is
-/// written as a stream, see PendingFile). Throws SceneError naming `origin`.
-void check_writable_target(const std::string& path, const char* origin);
-
 /// The files a frame with the terms `aovs` makes when written to `path`, as
 /// encode_frame_files() names them: the image, then `X.NAME.EXT` for each term (.exr: the one
 /// file).
 std::vector<std::string> frame_file_paths(const std::string& path,
                                           const std::vector<AovKind>& aovs);
-
-/// A file a render reads or writes and what names it in messages ("-o", "--aov depth",
-/// "scene", "mesh or MTL file").
-struct NamedFile {
-    std::string path;
-    std::string origin;
-    bool output = true;
-};
-
-/// Throws SceneError when an output and any other of `files` are the same file: the same device
-/// and inode, or, where nothing is yet, the same path once symlinks are resolved. The message
-/// names both: "a.png: -o and --stats name the same file". Inputs may repeat.
-void check_distinct_files(const std::vector<NamedFile>& files);
-
-/// While alive, records every file the scene loader reads from disk (the scene, its OBJ and MTL
-/// files), calling the observer set before it too (set_file_observer(); MPI keeps them).
-class InputFileRecorder {
-  public:
-    InputFileRecorder();
-    ~InputFileRecorder();
-    InputFileRecorder(const InputFileRecorder&) = delete;
-    InputFileRecorder& operator=(const InputFileRecorder&) = delete;
-    /// The paths read so far, as the loader named them.
-    const std::vector<std::string>& files() const { return files_; }
-
-  private:
-    FileObserver previous_;
-    std::mutex mutex_;
-    std::vector<std::string> files_;
-};
 
 /// The bytes of the image file `path` names (format by extension; 8-bit formats encoded with
 /// `encoding`, float formats raw).
@@ -94,14 +52,44 @@ void write_frame_files(const Frame& frame, const std::string& path, Encoding enc
 /// a perceptual colour map (viridis) from 0 to the frame's largest count.
 Image aov_picture(const Aov& aov);
 
-/// viridis at f in [0, 1] (the colour map of the `tests` picture; README shows its scale).
-Rgb viridis(float f);
-
-/// The --stats JSON text of a frame rendered from `desc` (the description whose settings
-/// were rendered: its pipeline, model, antialiasing, source and accel are reported).
-std::string frame_stats_json(const Frame& frame, const SceneDesc& desc);
-
 /// The --aa-mask picture of a frame rendered with RenderOptions::want_aa_mask.
 Image frame_aa_mask(const Frame& frame);
+
+/// The bytes of `image` as the file `path` names (format by extension; 8-bit formats with
+/// `encoding`, float formats raw).
+std::string encode_image(const std::string& path, const Image& image, Encoding encoding);
+
+/// The image as 8-bit RGBA bytes (alpha 255), row 0 first, its values encoded as the 8-bit
+/// files encode them (e.g. for a texture).
+std::vector<uint8_t> rgba8(const Image& image, Encoding encoding);
+
+/// Writes `image` to `path` atomically (format by extension; 8-bit formats with `encoding`).
+/// Throws FileError.
+void write_image(const std::string& path, const Image& image, Encoding encoding);
+
+/// Writes the bytes of each (path, bytes) to a temporary file, then renames them all into place
+/// (a failure leaves none of them); a stream among them is waited for in steps that check
+/// `cancel`. Throws FileError (WriteCancelled when cancelled).
+void write_files_together(std::vector<std::pair<std::string, std::string>> files,
+                          const std::atomic<bool>* cancel = nullptr);
+
+/// The name of a pipeline as the scene file spells it ("zbuffer", "raycast", "raytrace").
+const char* pipeline_name(Pipeline p);
+
+/// The statistics of a render of `desc` as the JSON text `--stats` writes (SPEC §3).
+std::string stats_json(const RenderStats& stats, const SceneDesc& desc);
+
+/// Bytes of the process's peak resident memory (getrusage ru_maxrss).
+uint64_t peak_resident_bytes();
+
+/// The ray tree of pixel (x, y) as JSON text (`luz view --click`, luz.ray_tree): the pixel, the
+/// colour the render gave it, and every node with its terms, objects and materials named as in
+/// the scene.
+std::string ray_tree_json(const RayTree& tree, const SceneDesc& desc, int x, int y,
+                          const Rgb& pixel);
+
+/// Short names for the inspector: "objects.2 (sphere)", "material red", "lights.0".
+std::string object_label(const SceneDesc& desc, int object);
+std::string material_label(const SceneDesc& desc, int material);
 
 }  // namespace luz

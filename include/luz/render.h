@@ -2,22 +2,19 @@
 // per-term images asked for and the statistics; and a pixel's ray tree.
 #pragma once
 
+#include <atomic>
+#include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "image/image.h"
+#include "luz/image.h"
+#include "luz/ray_tree.h"
 #include "luz/scene.h"
-#include "render/aov.h"         // AovKind, aov_name(), parse_aov_list(): the terms of SPEC §1.5
-#include "render/checkpoint.h"  // Checkpoint: --checkpoint FILE
-#include "render/parallel.h"    // resolve_threads()
-#include "render/progress.h"    // ProgressBar: a terminal progress bar
-#include "render/ray_tree.h"
-#include "render/render.h"
-#include "render/sampler.h"
-#include "render/stats.h"
-#include "scene/camera.h"  // Camera: rays and projection of SPEC §1.3
+#include "luz/stats.h"
+#include "luz/terms.h"
 
 namespace luz {
 
@@ -31,18 +28,14 @@ struct Aov {
     bool scalar() const { return aov_is_scalar(kind); }
 };
 
-/// What one render made.
+/// What one render made: it owns its image, its per-term images and its statistics.
 struct Frame {
     Image image;            ///< linear float RGB, unclamped, row 0 on top
     std::vector<Aov> aovs;  ///< the per-term images asked for, in the order asked
-    RenderStats stats;      ///< what --stats writes (api/stats_json.h)
+    RenderStats stats;      ///< what --stats writes
     AaMask aa_mask;         ///< which pixels adaptive antialiasing refined (when asked)
     bool complete = false;  ///< false when the render was cancelled (the image is then
                             ///< incomplete: write nothing)
-    /// The image as a PNG file, with `png_encoding`, when RenderOptions::png had it rendered
-    /// straight into one (`image` is then empty, 0 × 0); empty otherwise.
-    std::string png;
-    Encoding png_encoding = Encoding::linear;
 
     /// The per-term image called `name`, or nullptr when it was not asked for.
     const Aov* aov(std::string_view name) const {
@@ -52,10 +45,16 @@ struct Frame {
     }
 };
 
-/// What a render needs beyond the settings: threads, progress, cancellation, the refinement
-/// mask (render/render.h's RenderControl; `aa_mask` there is ignored: ask with `want_aa_mask`).
+/// What a library user sets for one render beyond the Settings.
 struct RenderOptions {
-    RenderControl control;
+    int threads = 0;  ///< 0: every core this process may run on
+    /// Called now and then with the fraction done (0..1), from one thread at a time.
+    std::function<void(double)> progress;
+    /// When set and true, the render stops early (Frame::complete is then false).
+    const std::atomic<bool>* cancel = nullptr;
+    /// Called (from any render thread) with a warning about the render itself, each kind at
+    /// most once per render (an exploding ray tree, a checkpoint that could not be written).
+    std::function<void(const std::string&)> warning;
     bool want_aa_mask = false;  ///< fill Frame::aa_mask
     std::vector<AovKind> aovs;  ///< the per-term images to fill (parse_aov_list("all", …))
     /// When set, only these pixels (X1, Y1 exclusive; `--region`, SPEC §3): the Frame is
@@ -63,15 +62,6 @@ struct RenderOptions {
     /// the whole render (antialiasing and its filters included). render() checks it with
     /// check_region().
     std::optional<PixelRect> region;
-    /// When set, the image is wanted only as a PNG file with this encoding (as the CLI's
-    /// `-o X.png`): render() may then render it band by band into one small buffer and
-    /// compress each band as it is done (render_rows(), PngBands), so that no float image of
-    /// the whole size is made — at 3200×2400 its 92 MB of fresh memory cost ~8 % of a
-    /// Whitted render, on a VM. It does so when renders_in_rows() and nothing else is asked
-    /// (no terms, mask or region): Frame::png then holds the file, the very bytes encode_image()
-    /// gives for the whole image, and Frame::image stays empty. Otherwise the Frame is as
-    /// without this option.
-    std::optional<Encoding> png;
 };
 
 /// Throws SceneError naming `what` (e.g. "--region 0,0,900,10", "region") when `region` is
@@ -91,5 +81,38 @@ Frame render(const Scene& scene, const Settings& settings, const RenderOptions& 
 /// (i + 0.5, j + 0.5)): every ray traced for it with the numbers shade() and trace() used.
 /// In the zbuffer pipeline, the primary hit traced as raycast.
 RayTree ray_tree(const Scene& scene, const Settings& settings, float px, float py);
+
+/// What render_png() made: the PNG file's bytes (empty when cancelled) and the statistics.
+struct PngFrame {
+    std::string png;
+    RenderStats stats;
+    bool complete = false;
+};
+
+/// The image of render(scene, settings, options) as a PNG file with `encoding`, the very bytes
+/// encode_frame() gives for it. Where it can (the ray pipelines, each pixel from its own
+/// samples, no terms, mask or region asked for), it renders and compresses the image band by
+/// band into one small buffer, without a float image of the whole size.
+PngFrame render_png(const Scene& scene, const Settings& settings, const RenderOptions& options,
+                    Encoding encoding);
+
+/// The number of threads a render with `requested` threads uses (0: every core this process
+/// may run on, as its CPU affinity allows).
+int render_threads(int requested);
+
+/// Where world point `p` falls in the image of `settings`' camera, in pixel space (pixel (i, j)
+/// covers [i, i+1) × [j, j+1)); false when it lies behind the camera plane (perspective).
+bool project_point(const Settings& settings, const Vec3& p, float& px, float& py);
+
+/// Throws SceneError naming the scene and the key of the largest part (`image.width`,
+/// `render.tessellation`, `objects.N.file`, `objects`) when rendering `desc` with `aov_count`
+/// per-term images needs more than `limit` bytes (default: half the memory of this machine or
+/// of its cgroup limit).
+void check_memory(const SceneDesc& desc, std::optional<uint64_t> limit = std::nullopt,
+                  int aov_count = 0);
+
+/// Half of the physical memory (or of the cgroup limit, when smaller): check_memory()'s default
+/// cap, and the one a front end gives set_memory_limit().
+uint64_t default_memory_limit();
 
 }  // namespace luz

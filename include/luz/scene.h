@@ -4,30 +4,17 @@
 
 #include <cstdint>
 #include <memory>
-#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "api/list_commands.h"  // print_scenes(), print_materials(): `luz scenes`, `luz materials`
-#include "scene/cancel.h"       // CancelScope: a load, build or encoding stops with Cancelled
-#include "scene/demo_scenes.h"
-#include "scene/input_error.h"
-#include "scene/obj_loader.h"
-#include "scene/presets.h"
-#include "scene/scene_desc.h"
-#include "scene/scene_loader.h"
-#include "scene/scene_writer.h"  // write_scene(): a description back to JSON
-#include "scene/text_files.h"    // set_memory_limit(): the cap on what loading may use
+#include "luz/demo_scenes.h"  // demo_scenes(): the built-in scenes (`luz scenes`)
+#include "luz/errors.h"
+#include "luz/presets.h"  // presets(): the material presets (`luz materials`)
+#include "luz/scene_desc.h"
 
 namespace luz {
-
-struct BuiltScene;
-
-/// Bad input: the message is one line naming the file (or `<dict>`, `--set …`) and the place
-/// (line:column or key path). Every API call reports bad input with it; none ends the process.
-using SceneError = InputError;
 
 /// Loads `source` — a scene file or "demo:NAME" — and applies `overrides` in order (as
 /// `--set PATH=JSON` does), validated once (SPEC §2). Throws SceneError.
@@ -37,11 +24,6 @@ SceneDesc load_scene(const std::string& source, const std::vector<Override>& ove
 SceneDesc parse_scene(std::string_view json_text, const std::string& label,
                       const std::string& base_dir, const std::vector<Override>& overrides);
 
-/// The same from a parsed JSON value (e.g. a Python dict); messages name `label` and key paths.
-SceneDesc load_scene_value(const nlohmann::ordered_json& value, const std::string& label,
-                           const std::string& base_dir,
-                           const std::vector<Override>& overrides = {});
-
 /// `message` as one line, as every front end shows an error: trailing newlines dropped, inner
 /// ones made spaces, other control bytes (quoted from a bad file) shown as '?'.
 std::string one_line(const std::string& message);
@@ -49,8 +31,16 @@ std::string one_line(const std::string& message);
 /// Parses one "PATH=JSON" as given to --set. Throws SceneError when malformed.
 Override parse_set(const std::string& arg);
 
-// read_scene_text(source) (scene/scene_loader.h): a file's or demo's text, label and folder,
-// so that a front end can parse it again later with other overrides (parse_scene).
+/// Reads `source` — a file path or "demo:NAME" — without parsing it, so that a front end can
+/// parse it again later with other overrides: parse_scene(text, label, base_dir, overrides)
+/// gives what load_scene(source, overrides) gives. Throws SceneError.
+SceneText read_scene_text(const std::string& source);
+
+/// Writes `desc` back as a scene file (JSON, atomically); mesh paths relative to its folder.
+void write_scene(const std::string& path, const SceneDesc& desc);
+
+/// The cap on what loading a scene may use (its text, OBJ files, meshes), in bytes.
+void set_memory_limit(uint64_t bytes);
 
 /// The scene keys a front end's render options set (SPEC §3 `--pipeline` … `--threshold`,
 /// SPEC §5 the Python keywords of the same names), each as the user gave it: a number's text
@@ -82,9 +72,6 @@ class Scene {
     /// True once built.
     explicit operator bool() const { return state_ != nullptr; }
 
-    /// The runtime scene (library internals: geometry/scene.h).
-    const BuiltScene& built() const;
-
     /// How often its parts were built so far.
     BuildCounts build_counts() const;
 
@@ -95,10 +82,11 @@ class Scene {
     /// Number of materials the objects refer to: a render's Settings must have at least these.
     size_t material_count() const;
 
-    struct State;  ///< shared by copies (api/scene.cpp)
+    struct State;  ///< shared by copies (api/scene.cpp): the runtime scene, its BVH
 
   private:
     friend Scene build(const SceneDesc& desc);
+    friend const State& scene_state(const Scene& scene);
     std::shared_ptr<State> state_;
 };
 
@@ -136,7 +124,20 @@ class EditableScene {
     BuildCounts retired_;  ///< builds of the scenes replaced so far
 };
 
-// The built-in scenes (`luz scenes`): demo_scenes() and find_demo() (scene/demo_scenes.h);
-// the material presets (`luz materials`): presets() and find_preset() (scene/presets.h).
+/// Lets `desc` share `base`'s loaded meshes where they came out the same (a reload of the same
+/// OBJ file, e.g. for other overrides), so that needs_rebuild(), which compares meshes by
+/// identity, sees equal objects as equal.
+void share_meshes(const SceneDesc& base, SceneDesc& desc);
+
+/// The range a slider of the scene key `key` (e.g. "render.max_depth", "materials.*.n") shows:
+/// within the loader's limits for that key.
+struct SliderRange {
+    double lo, hi;
+    bool capped = false;  ///< the key has an upper limit: a typed-in value stays ≤ hi
+};
+SliderRange slider_range(std::string_view key);
+
+/// The scene as JSON text as the loader understood it (mesh paths relative to `out_dir`).
+std::string scene_to_json(const SceneDesc& desc, const std::string& out_dir);
 
 }  // namespace luz

@@ -8,23 +8,28 @@
 #include <filesystem>
 
 #include "api/stats_json.h"
+#include "scene/scene_loader.h"
 
 namespace luz {
+
+struct Animation::Meshes {
+    MeshCache cache;
+};
 
 Animation Animation::load(const std::string& source, const std::vector<Override>& overrides) {
     Animation a;
     a.text_ = read_scene_text(source);
     a.overrides_ = overrides;
-    a.meshes_ = std::make_shared<MeshCache>();
+    a.meshes_ = std::make_shared<Animation::Meshes>();
     a.first_ =
-        parse_scene(a.text_.text, a.text_.label, a.text_.base_dir, overrides, a.meshes_.get());
+        parse_scene(a.text_.text, a.text_.label, a.text_.base_dir, overrides, &a.meshes_->cache);
     return a;
 }
 
 SceneDesc Animation::frame(int f) const {
     if (f == 0) return first_;
     SceneDesc d =
-        parse_scene_frame(text_.text, text_.label, text_.base_dir, overrides_, f, meshes_.get());
+        parse_scene_frame(text_.text, text_.label, text_.base_dir, overrides_, f, &meshes_->cache);
     return d;
 }
 

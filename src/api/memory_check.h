@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "luz/render.h"
 #include "scene/scene_desc.h"
 
 namespace luz {
@@ -29,14 +30,7 @@ struct MemoryEstimate {
 /// for besides the image.
 MemoryEstimate estimate_memory(const SceneDesc& desc, int aov_count = 0);
 
-/// Half of the physical memory (or of the cgroup limit, when smaller).
-uint64_t default_memory_limit();
-
-/// Throws InputError naming the scene and the key of the largest part (`image.width`,
-/// `render.tessellation`, `objects.N.file` for one large mesh, `objects` for many meshes or
-/// objects) when the render needs more than `limit` bytes (default_memory_limit() when not
-/// given). The scene's JSON was bounded while it was parsed (scene/json_text.h).
-void check_memory(const SceneDesc& desc, std::optional<uint64_t> limit = std::nullopt,
-                  int aov_count = 0);
+// default_memory_limit() (engine/luz_engine.h) and check_memory() (luz/render.h) are
+// declared with the API.
 
 }  // namespace luz

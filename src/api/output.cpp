@@ -7,6 +7,11 @@
 #include <filesystem>
 #include <memory>
 
+#include "engine/luz_engine.h"  // check_writable_target()
+#include "image/atomic_file.h"
+#include "image/image_io.h"
+#include "render/adaptive_aa.h"  // aa_mask_image()
+
 namespace luz {
 
 void check_writable_target(const std::string& path, const char* origin) {
@@ -45,15 +50,6 @@ void check_output_path(const std::string& path, const char* origin) {
 }
 
 std::string encode_frame(const Frame& frame, const std::string& path, Encoding encoding) {
-    if (!frame.png.empty()) {  // rendered straight into a PNG file (RenderOptions::png)
-        ImageFormat format{};
-        if (format_from_path(path, format) && format == ImageFormat::png &&
-            encoding == frame.png_encoding)
-            return frame.png;
-        throw ImageError(path + ": the frame was rendered straight into a PNG file with " +
-                         (frame.png_encoding == Encoding::srgb ? "sRGB" : "linear") +
-                         " values (RenderOptions::png): it holds no float image to write");
-    }
     return encode_image(path, frame.image, encoding);
 }
 
@@ -74,6 +70,9 @@ constexpr float kViridisEnd[3] = {0.993248f, 0.906157f, 0.143936f};  // at 1
 
 }  // namespace
 
+namespace {
+
+/// viridis at f in [0, 1]: the colour map of the `tests` picture (README shows its scale).
 Rgb viridis(float f) {
     if (!(f > 0)) f = 0;
     if (f > 1) f = 1;
@@ -85,6 +84,8 @@ Rgb viridis(float f) {
     // Anchors 0 … 7 are 1/8 apart; the last segment runs from 7/8 to the end colour at 1.
     return Rgb{a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t};
 }
+
+}  // namespace
 
 Image aov_picture(const Aov& aov) {
     const Image& in = aov.image;
@@ -182,10 +183,29 @@ void write_frame_files(const Frame& frame, const std::string& path, Encoding enc
     commit_together(files, cancel);
 }
 
-std::string frame_stats_json(const Frame& frame, const SceneDesc& desc) {
-    return stats_json_text(frame.stats, desc);
+Image frame_aa_mask(const Frame& frame) { return aa_mask_image(frame.aa_mask, frame.image); }
+
+std::vector<uint8_t> rgba8(const Image& image, Encoding encoding) {
+    std::vector<uint8_t> bytes(image.pixels.size() * 4);
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+        const Rgb& c = image.pixels[i];
+        bytes[4 * i + 0] = encode_8bit(c.x, encoding);
+        bytes[4 * i + 1] = encode_8bit(c.y, encoding);
+        bytes[4 * i + 2] = encode_8bit(c.z, encoding);
+        bytes[4 * i + 3] = 255;
+    }
+    return bytes;
 }
 
-Image frame_aa_mask(const Frame& frame) { return aa_mask_image(frame.aa_mask, frame.image); }
+void write_files_together(std::vector<std::pair<std::string, std::string>> files,
+                          const std::atomic<bool>* cancel) {
+    std::vector<std::unique_ptr<PendingFile>> pending;
+    std::vector<PendingFile*> all;
+    for (auto& [name, bytes] : files) {
+        pending.push_back(std::make_unique<PendingFile>(name, std::move(bytes)));
+        all.push_back(pending.back().get());
+    }
+    commit_together(all, cancel);
+}
 
 }  // namespace luz

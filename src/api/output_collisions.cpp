@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <utility>
 
+#include "engine/luz_engine.h"
 #include "image/output_target.h"
-#include "luz/output.h"
+#include "scene/text_files.h"
 
 namespace luz {
 

@@ -1,8 +1,8 @@
 // Ray tree → JSON.
-#include "api/ray_tree_json.h"
-
 #include <cmath>
 #include <nlohmann/json.hpp>
+
+#include "luz/output.h"
 
 namespace luz {
 

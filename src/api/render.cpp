@@ -1,12 +1,21 @@
-// The public render() and ray_tree(): a built Scene with any Settings (include/luz/render.h).
+// The public render(), render_png() and ray_tree(): a built Scene with any Settings
+// (include/luz/render.h), and their twins with the engine's hooks (engine/luz_engine.h).
 #include "luz/render.h"
 
 #include <algorithm>
 #include <chrono>
 #include <string>
 
-#include "geometry/scene.h"
+#include "api/built_scene.h"
+#include "engine/luz_engine.h"
 #include "image/image_io.h"
+#include "render/aov.h"
+#include "render/checkpoint.h"
+#include "render/parallel.h"
+#include "render/ray_tree.h"
+#include "render/render.h"
+#include "render/tiles.h"
+#include "scene/camera.h"
 
 namespace luz {
 
@@ -41,11 +50,10 @@ void crop_frame(Frame& frame, const PixelRect& r, RenderStats& stats) {
     std::copy(corners, corners + 4, stats.region);
 }
 
-/// The most rows render_png() renders and compresses at a time. Each band costs a parallel pass
-/// of its own (~2.5 ms of wall time at 800×600 on 2 cores, measured: 3 bands of 256 rows made
-/// an 800×600 Whitted render 5 % slower than the whole image), while a smaller buffer saves
-/// the first touch of fresh memory (~1.6 ms of a core per MB on a VM): bands of about 1024
-/// rows keep most of the saving at 3200×2400 and none of the cost below 1024 rows.
+/// The most rows render_png() renders and compresses at a time: each band costs a parallel pass
+/// of its own, while a smaller buffer spares the first touch of fresh memory; bands of about
+/// 1024 rows keep most of the saving on large images and cost nothing below 1024 rows
+/// (docs/BENCHMARKS.md, "PNG bands").
 constexpr int kMaxPngRows = 16 * PngBands::kBandRows;
 
 /// Rows per band for an image of h rows: as few bands as kMaxPngRows allows, of equal height
@@ -58,14 +66,13 @@ int png_band_rows(int h) {
     return std::min(h, (rows + B - 1) / B * B);
 }
 
-/// The frame as a PNG file, rendered and compressed band by band into one buffer of rows
-/// (RenderOptions::png); requires renders_in_rows().
-Frame render_png(const BuiltScene& scene, const Settings& settings, const RenderControl& control,
-                 Encoding encoding) {
-    const auto start = std::chrono::steady_clock::now();
+/// The image as a PNG file, rendered and compressed band by band into one buffer of rows;
+/// requires renders_in_rows().
+PngFrame render_png_bands(const BuiltScene& scene, const Settings& settings,
+                          const RenderControl& control, Encoding encoding) {
     const int w = settings.image.width, h = settings.image.height;
     const int band_rows = png_band_rows(h);
-    Frame frame;
+    PngFrame frame;
     PngBands png(w, h, encoding);
     Image rows(w, band_rows, Unwritten{});
     RenderControl band = control;
@@ -79,13 +86,25 @@ Frame render_png(const BuiltScene& scene, const Settings& settings, const Render
         if (!cancelled()) png.add(rows, count);
     }
     frame.complete = !cancelled();
-    if (frame.complete) {
-        frame.png = png.finish();
-        frame.png_encoding = encoding;
-    }
-    frame.stats.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (frame.complete) frame.png = png.finish();
     return frame;
+}
+
+/// What the render layer is told: the options and the hooks.
+RenderControl control_of(const RenderOptions& options, const EngineHooks& hooks) {
+    RenderControl control;
+    control.threads = options.threads;
+    control.progress = options.progress;
+    control.cancel = options.cancel;
+    control.warning = options.warning;
+    control.region = options.region.value_or(PixelRect{});
+    control.checkpoint = hooks.checkpoint ? &hooks.checkpoint->checkpoint() : nullptr;
+    control.share = hooks.share;
+    return control;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace
@@ -126,16 +145,18 @@ PixelRect parse_region(const std::string& text, const ImageDesc& image) {
 }
 
 Frame render(const Scene& scene, const Settings& settings, const RenderOptions& options) {
+    return render(scene, settings, options, EngineHooks{});
+}
+
+Frame render(const Scene& scene, const Settings& settings, const RenderOptions& options,
+             const EngineHooks& hooks) {
     check_fits(scene, settings);
     scene.prepare(settings.render.pipeline);
     const bool region = options.region.has_value();
     if (region) check_region(*options.region, settings.image, "region");
     Frame frame;
-    RenderControl control = options.control;
-    control.region = options.region.value_or(PixelRect{});
+    RenderControl control = control_of(options, hooks);
     control.aa_mask = options.want_aa_mask ? &frame.aa_mask : nullptr;
-    if (options.png && options.aovs.empty() && renders_in_rows(settings, control))
-        return render_png(scene.built(), settings, control, *options.png);
     // The per-term images asked for, each once, in the order asked; the pipelines fill them.
     TermPlanes planes;
     for (AovKind kind : options.aovs) {
@@ -150,17 +171,61 @@ Frame render(const Scene& scene, const Settings& settings, const RenderOptions& 
     }
     for (Aov& a : frame.aovs) planes.plane[static_cast<int>(a.kind)] = &a.image;
     control.terms = planes.any() ? &planes : nullptr;
-    frame.image = render(scene.built(), settings, control, frame.stats);
+    frame.image = render(built_scene(scene), settings, control, frame.stats);
     frame.complete = !(control.cancel && control.cancel->load());
     if (region) crop_frame(frame, *options.region, frame.stats);
     return frame;
+}
+
+PngFrame render_png(const Scene& scene, const Settings& settings, const RenderOptions& options,
+                    Encoding encoding) {
+    return render_png(scene, settings, options, encoding, EngineHooks{});
+}
+
+PngFrame render_png(const Scene& scene, const Settings& settings, const RenderOptions& options,
+                    Encoding encoding, const EngineHooks& hooks) {
+    const auto start = std::chrono::steady_clock::now();
+    check_fits(scene, settings);
+    scene.prepare(settings.render.pipeline);
+    const RenderControl control = control_of(options, hooks);
+    if (options.aovs.empty() && !options.want_aa_mask && !options.region &&
+        renders_in_rows(settings, control)) {
+        PngFrame frame = render_png_bands(built_scene(scene), settings, control, encoding);
+        frame.stats.seconds = seconds_since(start);
+        return frame;
+    }
+    Frame whole = render(scene, settings, options, hooks);
+    PngFrame frame;
+    frame.stats = whole.stats;
+    frame.complete = whole.complete;
+    if (frame.complete) frame.png = encode_image("frame.png", whole.image, encoding);
+    return frame;
+}
+
+int render_threads(int requested) { return resolve_threads(requested); }
+
+bool project_point(const Settings& settings, const Vec3& p, float& px, float& py) {
+    const Camera cam = Camera::from(settings.camera, settings.image.width, settings.image.height);
+    const Vec3 v = cam.to_view(p);
+    float nx, ny;
+    if (cam.projection == Projection::orthographic) {
+        nx = v.x / cam.half_width;
+        ny = v.y / cam.half_height;
+    } else {
+        if (v.z <= 1e-4f) return false;
+        nx = v.x / (v.z * cam.half_width);
+        ny = v.y / (v.z * cam.half_height);
+    }
+    px = (nx + 1) * 0.5f * static_cast<float>(cam.width);
+    py = (1 - ny) * 0.5f * static_cast<float>(cam.height);
+    return true;
 }
 
 RayTree ray_tree(const Scene& scene, const Settings& settings, float px, float py) {
     check_fits(scene, settings);
     scene.prepare(settings.render.pipeline == Pipeline::zbuffer ? Pipeline::raycast
                                                                 : settings.render.pipeline);
-    return trace_ray_tree(scene.built(), settings, px, py);
+    return trace_ray_tree(built_scene(scene), settings, px, py);
 }
 
 }  // namespace luz

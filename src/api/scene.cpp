@@ -5,7 +5,10 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
+#include "api/built_scene.h"
+#include "luz/json.h"
 #include "luz/scene.h"
+#include "scene/mesh_data.h"
 
 namespace luz {
 
@@ -15,10 +18,12 @@ struct Scene::State {
     mutable BuildCounts counts;
 };
 
-const BuiltScene& Scene::built() const {
-    if (!state_) throw std::logic_error("luz::Scene used before build()");
-    return state_->built;
+const Scene::State& scene_state(const Scene& scene) {
+    if (!scene.state_) throw std::logic_error("luz::Scene used before build()");
+    return *scene.state_;
 }
+
+const BuiltScene& built_scene(const Scene& scene) { return scene_state(scene).built; }
 
 BuildCounts Scene::build_counts() const {
     if (!state_) return {};
@@ -26,10 +31,10 @@ BuildCounts Scene::build_counts() const {
     return state_->counts;
 }
 
-size_t Scene::material_count() const { return built().material_count; }
+size_t Scene::material_count() const { return built_scene(*this).material_count; }
 
 void Scene::prepare(Pipeline pipeline) const {
-    const BuiltScene& b = built();
+    const BuiltScene& b = built_scene(*this);
     if (pipeline == Pipeline::zbuffer || b.geometry.accel != Accel::bvh) return;
     std::lock_guard lock(state_->mutex);
     if (b.has_bvh) return;
@@ -52,6 +57,29 @@ Scene build(const SceneDesc& desc) {
     scene.state_->built.geometry = desc.geometry;
     scene.state_->counts.geometry = 1;
     return scene;
+}
+
+namespace {
+
+/// Two loads of one OBJ file that came out the same (a reload for new overrides).
+bool same_mesh(const MeshData& a, const MeshData& b) {
+    return a.file == b.file && a.positions == b.positions && a.normals == b.normals &&
+           a.position == b.position && a.normal == b.normal && a.material == b.material;
+}
+
+// Lets `desc` share `base`'s loaded meshes where they are the same, so that needs_rebuild()
+/// (which compares meshes by identity) sees equal objects as equal.
+}  // namespace
+
+void share_meshes(const SceneDesc& base, SceneDesc& desc) {
+    const size_t n = std::min(base.objects.size(), desc.objects.size());
+    for (size_t i = 0; i < n; ++i) {
+        const auto& old_mesh = base.objects[i].mesh;
+        auto& new_mesh = desc.objects[i].mesh;
+        if (old_mesh && new_mesh && old_mesh != new_mesh && same_mesh(*old_mesh, *new_mesh)) {
+            new_mesh = old_mesh;
+        }
+    }
 }
 
 bool needs_rebuild(const SceneDesc& a, const SceneDesc& b) {

@@ -86,7 +86,7 @@ nlohmann::json stats_to_json(const RenderStats& s, const SceneDesc& desc) {
     return out;
 }
 
-std::string stats_json_text(const RenderStats& stats, const SceneDesc& desc) {
+std::string stats_json(const RenderStats& stats, const SceneDesc& desc) {
     return stats_to_json(stats, desc).dump(2) + "\n";
 }
 

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "luz/output.h"
 #include "render/stats.h"
 #include "scene/scene_desc.h"
 
@@ -18,7 +19,6 @@ uint64_t peak_resident_bytes();
 /// The statistics of a render of `desc` as the JSON object `--stats` writes.
 nlohmann::json stats_to_json(const RenderStats& stats, const SceneDesc& desc);
 
-/// stats_to_json() as the text of a `--stats` file.
-std::string stats_json_text(const RenderStats& stats, const SceneDesc& desc);
+// stats_json() (luz/output.h): stats_to_json() as the text of a `--stats` file.
 
 }  // namespace luz

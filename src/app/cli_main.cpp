@@ -12,6 +12,7 @@
 
 #include "app/cli_options.h"
 #include "app/figures_command.h"
+#include "app/list_commands.h"
 #include "app/signals.h"
 #include "app/standard_output.h"
 #include "app/view_command.h"

@@ -8,34 +8,37 @@
 #include <memory>
 #include <optional>
 
+#include "app/progress_bar.h"
 #include "app/signals.h"
 #include "app/standard_output.h"
 #include "luz/luz.h"
+#include "luz_engine.h"
 
 namespace luz {
 namespace {
 
-/// The files of one rendered frame, written to temporary files: the refinement mask, the image,
-/// its per-term images and, with the last frame, the statistics. commit() writes the streams
-/// among them, then renames the others into place: a failure leaves none of them.
+/// The files of one rendered frame: the refinement mask, the image, its per-term images and,
+/// with the last frame, the statistics, each written to a temporary file as it is encoded.
+/// commit() writes the streams among them, then renames the others into place: a failure
+/// leaves none of them.
 struct FrameFiles {
-    std::vector<std::unique_ptr<PendingFile>> files;
+    PendingOutputs files;
 
+    /// A frame rendered whole (terms, mask, a format other than PNG).
     FrameFiles(const Frame& frame, const std::string& out, const std::string& mask_path,
                Encoding encoding) {
-        if (!mask_path.empty()) add(mask_path, encode_image(mask_path, frame_aa_mask(frame)));
+        if (!mask_path.empty())
+            add(mask_path, encode_image(mask_path, frame_aa_mask(frame), Encoding::linear));
         for (auto& [path, bytes] : encode_frame_files(frame, out, encoding))
             add(path, std::move(bytes));
     }
-    void add(const std::string& path, std::string&& bytes) {
-        files.push_back(std::make_unique<PendingFile>(path, std::move(bytes)));
-    }
+    /// A frame rendered straight into a PNG file (render_png()).
+    FrameFiles(PngFrame& frame, const std::string& out) { add(out, std::move(frame.png)); }
+    void add(const std::string& path, std::string&& bytes) { files.add(path, std::move(bytes)); }
     /// Throws Interrupted when a signal stops a stream's writing, FileError on failure.
     void commit() {
-        std::vector<PendingFile*> all;
-        for (auto& f : files) all.push_back(f.get());
         try {
-            commit_together(all, &interrupt_flag());
+            files.commit(&interrupt_flag());
         } catch (const WriteCancelled&) {
             throw_if_interrupted();
             throw;
@@ -136,23 +139,24 @@ int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
     const auto start = std::chrono::steady_clock::now();
     // --checkpoint: the file is read (and refused when it belongs to another render) before
     // any work; its key is the whole scene as the loader understood it, with the options.
-    std::optional<Checkpoint> checkpoint;
+    std::optional<CheckpointFile> checkpoint;
     if (!o.checkpoint.empty()) {
         std::string key = scene_to_json(first, "/") + "\naovs";
         for (AovKind k : aovs) key += std::string(" ") + aov_name(k);
         key += o.aa_mask_file.empty() ? "\nno mask" : "\nmask";
         if (o.region) key += "\nregion " + *o.region;
-        checkpoint.emplace(o.checkpoint, fingerprint(key));
+        checkpoint.emplace(o.checkpoint, key);
     }
     ProgressBar bar(!o.quiet && stderr_is_terminal());
     luz::RenderOptions options;
-    options.control.threads = o.threads;
+    options.threads = o.threads;
     options.want_aa_mask = !o.aa_mask_file.empty();
     options.aovs = aovs;
     options.region = region;
-    options.control.cancel = &interrupt_flag();
-    if (checkpoint) options.control.checkpoint = &*checkpoint;
-    options.control.warning = [&bar](const std::string& w) { bar.interject("luz: warning: " + w); };
+    options.cancel = &interrupt_flag();
+    options.warning = [&bar](const std::string& w) { bar.interject("luz: warning: " + w); };
+    EngineHooks hooks;
+    if (checkpoint) hooks.checkpoint = &*checkpoint;
 
     Scene scene;
     SceneDesc built_from;
@@ -165,21 +169,27 @@ int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
             scene = build(desc);
             built_from = desc;
         }
-        // A PNG file: rendered band by band and compressed as it goes, without a float image
-        // of the whole size, when nothing else is asked of the frame (RenderOptions::png:
-        // render() decides, from the terms, mask, region, checkpoint and antialiasing).
-        ImageFormat format{};
-        const bool png = format_from_path(file_of(out, f), format) && format == ImageFormat::png;
-        options.png = png ? std::optional<Encoding>(desc.image.encoding) : std::nullopt;
+        // A PNG file with nothing else asked of the frame: render_png() (band by band where it
+        // can, without a float image of the whole size).
+        const bool png = is_png_path(file_of(out, f)) && aovs.empty() && o.aa_mask_file.empty();
         const int done = f - range.first;
         if (bar.enabled()) {
-            options.control.progress = [&bar, done, n = range.count()](double p) {
+            options.progress = [&bar, done, n = range.count()](double p) {
                 bar.update((done + p) / n);
             };
         }
         set_interrupt_exits_now(false);
         const auto frame_start = std::chrono::steady_clock::now();
-        frame = render_frame(scene, desc, options);  // on a throw, ~ProgressBar ends the line
+        // On a throw, ~ProgressBar ends the line.
+        PngFrame png_frame;
+        if (png) {
+            png_frame = render_frame.png(scene, desc, options, desc.image.encoding, hooks);
+            frame = Frame{};
+            frame.stats = png_frame.stats;
+            frame.complete = png_frame.complete;
+        } else {
+            frame = render_frame.whole(scene, desc, options, hooks);
+        }
         if (checkpoint && !frame.complete) checkpoint->save();  // interrupted: keep what is done
         throw_if_interrupted();  // the image is incomplete: write nothing
         RenderStats& stats = frame.stats;
@@ -187,18 +197,21 @@ int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
         stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() -
                                                       (f == range.first ? start : frame_start))
                             .count();
-        stats.threads = resolve_threads(o.threads);
+        stats.threads = render_threads(o.threads);
         stats.peak_memory_bytes = std::max(stats.peak_memory_bytes, peak_resident_bytes());
 
         // 4. The files: all to temporary files, then renamed into place together (the
         //    statistics with the last frame), so that a failure leaves none of this frame
         //    behind. Finished frames stay.
-        FrameFiles files(frame, file_of(out, f), file_of(o.aa_mask_file, f), desc.image.encoding);
+        png_frame.stats = stats;
+        FrameFiles files = png ? FrameFiles(png_frame, file_of(out, f))
+                               : FrameFiles(frame, file_of(out, f), file_of(o.aa_mask_file, f),
+                                            desc.image.encoding);
         frame_stats.push_back(stats);
         numbers.push_back(f);
         if (f + 1 == range.end && !o.stats_file.empty()) {  // the last frame: all stats known
             files.add(o.stats_file, o.frames ? animation_stats_json(frame_stats, numbers, first)
-                                             : frame_stats_json(frame, first));
+                                             : stats_json(frame.stats, first));
         }
         throw_if_interrupted();  // the temporary files go with their destructors
         files.commit();
@@ -227,8 +240,14 @@ int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
 }
 
 int run_render(const RenderArgs& o) {
-    return run_render(o, [](const Scene& scene, const SceneDesc& desc,
-                            const RenderOptions& options) { return render(scene, desc, options); });
+    FrameRenderer renderer;
+    renderer.whole = [](const Scene& scene, const SceneDesc& desc, const RenderOptions& options,
+                        const EngineHooks& hooks) { return render(scene, desc, options, hooks); };
+    renderer.png = [](const Scene& scene, const SceneDesc& desc, const RenderOptions& options,
+                      Encoding encoding, const EngineHooks& hooks) {
+        return render_png(scene, desc, options, encoding, hooks);
+    };
+    return run_render(o, renderer);
 }
 
 }  // namespace luz

@@ -6,6 +6,7 @@
 #include "app/cli_options.h"
 #include "luz/render.h"
 #include "luz/scene.h"
+#include "luz_engine.h"
 
 namespace luz {
 
@@ -13,9 +14,15 @@ namespace luz {
 /// anything else std::exception (exit 1); on failure no output file is left behind.
 int run_render(const RenderArgs& o);
 
-/// How a front end renders one frame: luz::render() in one process, a share of the tiles per
-/// process under MPI (src/mpi/).
-using FrameRenderer = std::function<Frame(const Scene&, const SceneDesc&, const RenderOptions&)>;
+/// How a front end renders one frame, whole or as a PNG file: luz::render() and render_png() in
+/// one process, a share of the tiles per process under MPI (src/mpi/).
+struct FrameRenderer {
+    std::function<Frame(const Scene&, const SceneDesc&, const RenderOptions&, const EngineHooks&)>
+        whole;
+    std::function<PngFrame(const Scene&, const SceneDesc&, const RenderOptions&, Encoding,
+                           const EngineHooks&)>
+        png;
+};
 
 /// run_render() with each frame rendered by `render_frame`.
 int run_render(const RenderArgs& o, const FrameRenderer& render_frame);

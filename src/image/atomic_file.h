@@ -10,18 +10,9 @@
 #include <vector>
 
 #include "image/output_target.h"
+#include "luz/errors.h"  // FileError, WriteCancelled
 
 namespace luz {
-
-/// A file that cannot be written; the message names it ("out.png: cannot write: …").
-struct FileError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-/// A stream output not written because the cancel flag was set while it waited for a reader.
-struct WriteCancelled : FileError {
-    using FileError::FileError;
-};
 
 /// Whether a PendingFile is flushed to disk (fsync of the file before the rename and of its
 /// folder after it): a checkpoint must survive a machine crash; an image, like any program's

@@ -24,7 +24,6 @@
 #include "mpi/mpi_tile_share.h"
 #include "mpi/scene_bundle.h"
 #include "mpi/wire.h"
-#include "render/checkpoint.h"
 
 namespace luz::mpi {
 namespace {
@@ -56,30 +55,33 @@ Heartbeat* g_heart = nullptr;
 
 /// Rank 0: render(), stopped when a process is lost (the heartbeat); then what is done is kept
 /// in the --checkpoint and the run ends with the message naming the process.
-Frame render_watched(const Scene& scene, const SceneDesc& desc, RenderOptions options) {
-    if (!g_heart) return render(scene, desc, options);
-    options.control.cancel = g_heart->begin_render(options.control.cancel);
+Frame render_watched(const Scene& scene, const SceneDesc& desc, RenderOptions options,
+                     const EngineHooks& hooks) {
+    if (!g_heart) return render(scene, desc, options, hooks);
+    options.cancel = g_heart->begin_render(options.cancel);
     Frame frame;
     try {
-        frame = render(scene, desc, options);
+        frame = render(scene, desc, options, hooks);
     } catch (...) {
         g_heart->end_render();
         throw;
     }
     if (const std::optional<std::string> lost = g_heart->end_render()) {
-        if (options.control.checkpoint) options.control.checkpoint->save();
+        if (hooks.checkpoint) hooks.checkpoint->save();
         throw std::runtime_error(*lost);
     }
     return frame;
 }
 
 /// One frame with its tiles shared among the processes; `passes` numbers the message tags.
-Frame render_shared(const Scene& scene, const SceneDesc& desc, RenderOptions options, int& passes) {
+Frame render_shared(const Scene& scene, const SceneDesc& desc, const RenderOptions& options,
+                    EngineHooks hooks, int& passes) {
     MpiTileShare share(MPI_COMM_WORLD, passes);
-    options.control.share = &share;
+    hooks.share = &share;
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    Frame frame = rank == 0 ? render_watched(scene, desc, options) : render(scene, desc, options);
+    Frame frame = rank == 0 ? render_watched(scene, desc, options, hooks)
+                            : render(scene, desc, options, hooks);
     passes += share.passes() + 1;
     int size = 1;
     MPI_Comm_size(MPI_COMM_WORLD, &size);
@@ -97,23 +99,33 @@ int run_rank0(int argc, char** argv) {
     set_file_observer(recorder(bundle));
     bool sent = false;
     int passes = 0;
-    const FrameRenderer render_frame = [&](const Scene& scene, const SceneDesc& desc,
-                                           const RenderOptions& options) {
+    FrameRenderer render_frame;
+    render_frame.whole = [&](const Scene& scene, const SceneDesc& desc,
+                             const RenderOptions& options, const EngineHooks& hooks) {
         if (!sent) {
             // mpirun binds each process to cores (Open MPI: one core each when -np ≤ 2):
             // --threads beyond them share those cores.
-            const int cores = resolve_threads(0);
-            if (options.control.threads > cores) {
+            const int cores = render_threads(0);
+            if (options.threads > cores) {
                 std::fprintf(stderr,
                              "luz: warning: --threads %d, but mpirun bound this process to %d "
                              "core%s (mpirun --bind-to none, or --map-by ...:PE=%d)\n",
-                             options.control.threads, cores, cores == 1 ? "" : "s",
-                             options.control.threads);
+                             options.threads, cores, cores == 1 ? "" : "s", options.threads);
             }
             broadcast_bundle(bundle);  // status -1: render
             sent = true;
         }
-        return render_shared(scene, desc, options, passes);
+        return render_shared(scene, desc, options, hooks, passes);
+    };
+    // A shared render is never rendered in bands: the whole image, then its PNG file.
+    render_frame.png = [&](const Scene& scene, const SceneDesc& desc, const RenderOptions& options,
+                           Encoding encoding, const EngineHooks& hooks) {
+        const Frame frame = render_frame.whole(scene, desc, options, hooks);
+        PngFrame png;
+        png.stats = frame.stats;
+        png.complete = frame.complete;
+        if (png.complete) png.png = encode_image("frame.png", frame.image, encoding);
+        return png;
     };
     const int status = luz_main(argc, argv, &render_frame);
     if (!sent) {  // stopped before rendering: everyone exits with this status, silently
@@ -143,8 +155,8 @@ void follow_rank0(const RenderArgs& o) {
     const SceneDesc& first = animation.first();
     const FrameRange range = o.frames ? parse_frames(*o.frames, animation) : FrameRange{};
     RenderOptions options;
-    options.control.threads = o.threads;
-    options.control.cancel = &g_stop;
+    options.threads = o.threads;
+    options.cancel = &g_stop;
     options.want_aa_mask = !o.aa_mask_file.empty();
     if (!o.aovs.empty()) options.aovs = parse_aov_list(o.aovs, "--aov " + o.aovs);
     if (o.region) options.region = parse_region(*o.region, first.image);
@@ -157,7 +169,7 @@ void follow_rank0(const RenderArgs& o) {
             scene = build(desc);
             built_from = desc;
         }
-        render_shared(scene, desc, options, passes);
+        render_shared(scene, desc, options, EngineHooks{}, passes);
     }
 }
 

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "render/tile_share.h"
+#include "luz_engine.h"  // TileShare
 
 namespace luz::mpi {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "scene/obj_loader.h"  // TextReader
+#include "luz_engine.h"  // TextReader
 
 namespace luz::mpi {
 

@@ -19,7 +19,7 @@ py::array image_view(const Image& image, bool scalar, py::handle owner) {
 }
 
 py::dict frame_stats(const FrameObject& f) {
-    return to_python(stats_to_json(f.frame.stats, f.scene->desc));
+    return to_python(nlohmann::ordered_json::parse(stats_json(f.frame.stats, f.scene->desc)));
 }
 
 void save_frame(const FrameObject& f, const std::string& path) {

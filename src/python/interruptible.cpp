@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "scene/cancel.h"
+#include "luz/errors.h"
 
 namespace luz::python {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "luz/json.h"  // kMaxJsonNesting, load_scene_value()
 #include "luz/scene.h"
-#include "scene/json_text.h"  // kMaxJsonNesting
 
 namespace luz::python {
 
@@ -74,9 +74,9 @@ struct Converter {
         const bool dict = PyDict_Check(v.ptr());
         const bool list = PyList_Check(v.ptr()) || PyTuple_Check(v.ptr());
         if (dict || list) {
-            if (depth + 1 > loader::kMaxJsonNesting) {
+            if (depth + 1 > kMaxJsonNesting) {
                 throw SceneError(place() + ": JSON nested deeper than " +
-                                 std::to_string(loader::kMaxJsonNesting) + " levels");
+                                 std::to_string(kMaxJsonNesting) + " levels");
             }
         }
         if (dict) {

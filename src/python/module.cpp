@@ -39,7 +39,7 @@ std::shared_ptr<FrameObject> render_py(py::handle scene, py::handle pipeline, py
     const SceneOptions options =
         scene_options(pipeline, model, width, height, max_depth, aa, samples, threshold);
     RenderOptions render_options;
-    render_options.control.threads = static_cast<int>(int_argument(threads, "threads", 0, 4096));
+    render_options.threads = static_cast<int>(int_argument(threads, "threads", 0, 4096));
     render_options.aovs = aov_argument(aov);
     render_options.region = region_argument(region);
     const bool callable = !PyBool_Check(progress.ptr()) && PyCallable_Check(progress.ptr());
@@ -71,7 +71,7 @@ std::shared_ptr<FrameObject> render_py(py::handle scene, py::handle pipeline, py
     // As `luz render` reports them (app/render_command.cpp).
     RenderStats& stats = out->frame.stats;
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    stats.threads = resolve_threads(render_options.control.threads);
+    stats.threads = render_threads(render_options.threads);
     stats.peak_memory_bytes = std::max(stats.peak_memory_bytes, peak_resident_bytes());
     out->scene = resolved;
     return out;

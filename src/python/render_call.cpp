@@ -12,13 +12,13 @@ namespace py = pybind11;
 Frame render_interruptibly(const SceneRef& scene, RenderOptions options, py::handle progress) {
     std::atomic<double> fraction{0.0};
     // Called by the render's threads: only an atomic store, no Python.
-    options.control.progress = [&fraction](double f) { fraction.store(f); };
+    options.progress = [&fraction](double f) { fraction.store(f); };
     const bool report = progress && !progress.is_none();
     double shown = -1;
     Frame frame;
     run_interruptibly(
         [&](const std::atomic<bool>& cancel) {
-            options.control.cancel = &cancel;
+            options.cancel = &cancel;
             frame = render(scene->scene, scene->desc, options);
         },
         [&] {

@@ -34,25 +34,6 @@ std::vector<Override> set_overrides(py::handle set) {
 
 namespace {
 
-/// Two loads of one OBJ file that came out the same (a reload for new overrides).
-bool same_mesh(const MeshData& a, const MeshData& b) {
-    return a.file == b.file && a.positions == b.positions && a.normals == b.normals &&
-           a.position == b.position && a.normal == b.normal && a.material == b.material;
-}
-
-/// Lets `desc` share `base`'s loaded meshes where they are the same, so that needs_rebuild()
-/// (which compares meshes by identity) sees equal objects as equal.
-void share_meshes(const SceneDesc& base, SceneDesc& desc) {
-    const size_t n = std::min(base.objects.size(), desc.objects.size());
-    for (size_t i = 0; i < n; ++i) {
-        const auto& old_mesh = base.objects[i].mesh;
-        auto& new_mesh = desc.objects[i].mesh;
-        if (old_mesh && new_mesh && old_mesh != new_mesh && same_mesh(*old_mesh, *new_mesh)) {
-            new_mesh = old_mesh;
-        }
-    }
-}
-
 SceneRef make_handle(SceneText source, std::vector<Override> overrides) {
     auto h = std::make_shared<SceneHandle>();
     h->desc = parse_scene(source.text, source.label, source.base_dir, overrides);

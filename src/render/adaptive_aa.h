@@ -15,12 +15,6 @@
 
 namespace luz {
 
-/// Which pixels adaptive antialiasing refined and how deeply (`--aa-mask`).
-struct AaMask {
-    int width = 0, height = 0;
-    std::vector<uint8_t> level;  ///< per pixel, row-major: times split (0: not refined)
-};
-
 /// Adaptive sampling (SPEC §1.2): corner samples shared by neighbouring pixels, a pixel whose
 /// corners differ by more than `threshold` split into 4, recursively, up to `max_level` times.
 /// Sub-corners lie on the pixel's finest lattice: (i + k/S, j + l/S), S = 2^max_level.

@@ -12,24 +12,9 @@
 
 namespace luz {
 
-struct AaMask;
 struct TermPlanes;
 class Checkpoint;
 class TileShare;
-
-/// The pixels [x0, x1) × [y0, y1).
-struct PixelRect {
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-    int width() const { return x1 - x0; }
-    int height() const { return y1 - y0; }
-    bool empty() const { return x1 <= x0 || y1 <= y0; }
-    bool overlaps(const PixelRect& o) const {
-        return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1;
-    }
-    PixelRect clipped(const PixelRect& o) const {
-        return {std::max(x0, o.x0), std::max(y0, o.y0), std::min(x1, o.x1), std::min(y1, o.y1)};
-    }
-};
 
 /// How a render is run: threads, progress reports and cancellation.
 struct RenderControl {

@@ -5,25 +5,9 @@
 
 #include <atomic>
 
+#include "luz/errors.h"  // Cancelled, CancelScope
+
 namespace luz {
-
-/// Thrown by check_cancel(). Not a std::exception, so that no handler of those turns it into an
-/// error message: it ends the work and is caught where the flag was set (the CLI's main, the
-/// Python module's call).
-struct Cancelled {};
-
-/// While alive, `flag` is the calling thread's cancel flag (nullptr: none); the previous one is
-/// restored afterwards.
-class CancelScope {
-  public:
-    explicit CancelScope(const std::atomic<bool>* flag);
-    ~CancelScope();
-    CancelScope(const CancelScope&) = delete;
-    CancelScope& operator=(const CancelScope&) = delete;
-
-  private:
-    const std::atomic<bool>* previous_;
-};
 
 /// The calling thread's cancel flag, or nullptr: to hand to the worker threads of a parallel
 /// loop, which check it with cancel_requested().

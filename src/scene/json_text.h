@@ -6,15 +6,16 @@
 #include <string>
 #include <string_view>
 
+#include "luz/json.h"
+
 namespace luz::loader {
 
 // ordered_json keeps the file's key order: materials keep their order and the first unknown
 // key reported is the first one in the file.
 using Json = nlohmann::ordered_json;
 
-/// Deepest nesting of arrays and objects accepted (a scene needs 5). Deeper text is refused
-/// before parsing: nlohmann's dump() recurses, and "got …" messages dump values.
-inline constexpr int kMaxJsonNesting = 64;
+// kMaxJsonNesting (luz/json.h): deeper text is refused before parsing, as nlohmann's dump()
+// recurses and "got …" messages dump values.
 
 /// Byte offset of the first '[' or '{' nested deeper than kMaxJsonNesting outside strings, or
 /// npos.

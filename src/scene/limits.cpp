@@ -78,7 +78,7 @@ const KeyLimit& key_limit(std::string_view key) {
 
 SliderRange slider_range(std::string_view key) {
     const Limit& l = key_limit(key).limit;
-    return {l.ui_lo, l.ui_hi};
+    return {l.ui_lo, l.ui_hi, l.hi < kUnbounded};
 }
 
 }  // namespace luz

@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "luz/scene.h"  // SliderRange, slider_range()
+
 namespace luz {
 
 inline constexpr double kUnbounded = std::numeric_limits<double>::infinity();
@@ -71,9 +73,6 @@ const std::vector<KeyLimit>& key_limits();
 const KeyLimit& key_limit(std::string_view key);
 
 /// The range a slider for `key` shows (Limit::ui_lo … ui_hi).
-struct SliderRange {
-    double lo, hi;
-};
 SliderRange slider_range(std::string_view key);
 
 /// Largest image, in pixels (image.width · image.height), 2^28.

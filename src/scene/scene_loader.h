@@ -10,24 +10,8 @@
 
 namespace luz {
 
-/// One `--set PATH=JSON` (or a command-line option turned into one). `origin` names where it
-/// came from in messages, e.g. "--set" or "--width".
-struct Override {
-    std::string path;  ///< dotted key path; array elements by index, e.g. "lights.0.intensity"
-    std::string json;  ///< the value as JSON text
-    std::string origin = "--set";
-};
-
 /// Parses "PATH=JSON" as given to --set; throws InputError when malformed.
 Override parse_set(const std::string& arg);
-
-/// A scene's JSON text as load_scene() reads it, with how messages name it and the folder its
-/// relative paths start from.
-struct SceneText {
-    std::string text;
-    std::string label;     ///< the file path as given, or "demo:NAME"
-    std::string base_dir;  ///< the file's folder ("" for a built-in scene)
-};
 
 /// Reads `source` — a file path or "demo:NAME" — without parsing it: parse_scene(text, label,
 /// base_dir, overrides) then gives what load_scene(source, overrides) gives. Throws InputError

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <span>
 
+#include "luz/ray_tree.h"  // LightTerm: what shade() tells of each light
 #include "math/vec3.h"
 #include "scene/material.h"
 #include "scene/scene_desc.h"
@@ -45,17 +46,6 @@ struct ShadingPoint {
     Vec3 Ng;  ///< unit outward geometric normal (checker cells; two-sided flip test)
     Vec3 S;   ///< unit vector from P towards the viewer
     const Material* material = nullptr;
-};
-
-/// One light's share at a point: vis · (diffuse + specular) is what it adds.
-struct LightTerm {
-    float visibility = 1;  ///< vis_j: 1 lit, 0 blocked, transparency product in between
-    float distance = 0;    ///< d_j
-    float cos_theta = 0;   ///< max(0, N·L_j)
-    float cos_alpha = 0;   ///< max(0, R_j·S), 0 when N·L_j ≤ 0
-    Rgb diffuse;  ///< vis_j·Il_j·Kd·cosθ_j (lambert) or vis_j·Il_j/(d_j+K)·Kd·cosθ_j (phong)
-    Rgb specular;  ///< vis_j·Il_j/(d_j+K)·Ks·cosα_j^n (phong only); (d_j+K): the law's divisor
-    Rgb unshadowed;  ///< diffuse + specular as they would be with vis_j = 1 (SPEC §1.5 shadow)
 };
 
 /// The terms that add up to shade()'s colour: ambient + Σ_j (diffuse_j + specular_j).

@@ -78,7 +78,7 @@ const std::vector<std::string> kSmall = {"image.width=32", "image.height=24",
 
 Image render_image(const SceneDesc& d) {
     RenderOptions o;
-    o.control.threads = 2;
+    o.threads = 2;
     const Frame f = render(build(d), d, o);
     EXPECT_TRUE(f.complete);
     return f.image;

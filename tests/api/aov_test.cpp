@@ -23,7 +23,7 @@ bool same_bits(const Image& a, const Image& b) {
 Frame render_terms(const SceneDesc& d, int threads = 0) {
     RenderOptions o;
     o.aovs = all_aovs();
-    o.control.threads = threads;
+    o.threads = threads;
     return render(build(d), d, o);
 }
 

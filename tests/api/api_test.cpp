@@ -6,7 +6,10 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "geometry/scene.h"  // build_scene(): the internal pipeline this compares with
+#include "luz/json.h"
 #include "luz/luz.h"
+#include "render/render.h"
 
 namespace luz {
 namespace {

@@ -1,6 +1,6 @@
-// RenderOptions::png (the CLI's `-o X.png`): a ray-traced image rendered band by band into one
-// buffer of rows and compressed as it goes makes the very PNG bytes, and the very counts, of
-// the whole image rendered and then encoded; renders it cannot band keep their float image.
+// render_png() (the CLI's `-o X.png`): a ray-traced image rendered band by band into one buffer
+// of rows and compressed as it goes makes the very PNG bytes, and the very counts, of the whole
+// image rendered and then encoded; renders it cannot band are rendered whole, then encoded.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -57,23 +57,19 @@ TEST(RenderPng, BandsMakeTheBytesAndCountsOfTheWholeImage) {
         SCOPED_TRACE(c.scene + (c.sets.empty() ? "" : " " + c.sets[0]));
         const SceneDesc d = scene(c.scene, 83, 1500, c.sets);
         const Scene s = build(d);
-        RenderOptions whole_options;
-        whole_options.control.threads = 2;
-        const Frame whole = render(s, d, whole_options);
-        RenderOptions png_options = whole_options;
-        png_options.png = d.image.encoding;
-        const Frame banded = render(s, d, png_options);
+        RenderOptions options;
+        options.threads = 2;
+        const Frame whole = render(s, d, options);
+        const PngFrame banded = render_png(s, d, options, d.image.encoding);
         ASSERT_TRUE(banded.complete);
-        EXPECT_EQ(banded.image.width, 0) << "no float image of the whole size";
         EXPECT_EQ(banded.png, encode_image("x.png", whole.image, d.image.encoding));
-        EXPECT_EQ(encode_frame(banded, "x.png", d.image.encoding), banded.png);
         expect_same_counts(banded.stats, whole.stats);
     }
 }
 
-// Renders that cannot be banded are rendered whole, as without the option: adaptive
-// antialiasing and the tent filter (samples shared across rows), the zbuffer, terms, regions.
-TEST(RenderPng, OtherRendersKeepTheirFloatImage) {
+// Renders that cannot be banded are rendered whole, then encoded: adaptive antialiasing and the
+// tent filter (samples shared across rows), the zbuffer, terms, regions.
+TEST(RenderPng, OtherRendersAreEncodedWhole) {
     const Case cases[] = {
         {"demo:whitted", {"render.antialias.mode=\"adaptive\""}},
         {"demo:whitted", {"render.antialias.mode=\"grid\"", "render.antialias.filter=\"tent\""}},
@@ -81,33 +77,27 @@ TEST(RenderPng, OtherRendersKeepTheirFloatImage) {
     };
     for (const Case& c : cases) {
         const SceneDesc d = scene(c.scene, 40, 30, c.sets);
-        RenderOptions o;
-        o.png = Encoding::linear;
-        const Frame f = render(build(d), d, o);
-        EXPECT_TRUE(f.png.empty()) << c.scene;
-        EXPECT_EQ(f.image.width, 40) << c.scene;
+        const Scene s = build(d);
+        const PngFrame f = render_png(s, d, {}, Encoding::linear);
+        EXPECT_EQ(f.png, encode_image("x.png", render(s, d).image, Encoding::linear)) << c.scene;
     }
     const SceneDesc d = scene("demo:whitted", 40, 30);
     const Scene s = build(d);
-    RenderOptions terms;
-    terms.png = Encoding::linear;
-    terms.aovs = {AovKind::diffuse};
-    EXPECT_TRUE(render(s, d, terms).png.empty());
     RenderOptions region;
-    region.png = Encoding::linear;
     region.region = PixelRect{0, 0, 10, 10};
-    EXPECT_EQ(render(s, d, region).image.width, 10);
+    EXPECT_EQ(render_png(s, d, region, Encoding::linear).png,
+              encode_image("x.png", render(s, d, region).image, Encoding::linear));
 }
 
-// A frame rendered straight into a PNG file has no float image for another format or encoding.
-TEST(RenderPng, OtherFormatsOrEncodingsAreRefused) {
-    const SceneDesc d = scene("demo:whitted", 16, 16);
-    RenderOptions o;
-    o.png = Encoding::linear;
-    const Frame f = render(build(d), d, o);
-    ASSERT_FALSE(f.png.empty());
-    EXPECT_THROW(encode_frame(f, "x.pfm", Encoding::linear), ImageError);
-    EXPECT_THROW(encode_frame(f, "x.png", Encoding::srgb), ImageError);
+// A Frame owns its image whatever the output will be: a ray-traced render that render_png()
+// would band keeps its float image of the whole size in render().
+TEST(RenderPng, FrameAlwaysHoldsItsImage) {
+    const SceneDesc d = scene("demo:whitted", 40, 30);
+    const Frame f = render(build(d), d);
+    EXPECT_EQ(f.image.width, 40);
+    EXPECT_EQ(f.image.height, 30);
+    EXPECT_EQ(encode_frame(f, "x.png", Encoding::linear),
+              render_png(build(d), d, {}, Encoding::linear).png);
 }
 
 // Cancelled before it starts: incomplete, and no file.
@@ -115,9 +105,8 @@ TEST(RenderPng, CancelledRenderHasNoFile) {
     const SceneDesc d = scene("demo:whitted", 40, 300);
     std::atomic<bool> cancel{true};
     RenderOptions o;
-    o.png = Encoding::linear;
-    o.control.cancel = &cancel;
-    const Frame f = render(build(d), d, o);
+    o.cancel = &cancel;
+    const PngFrame f = render_png(build(d), d, o, Encoding::linear);
     EXPECT_FALSE(f.complete);
     EXPECT_TRUE(f.png.empty());
 }

@@ -72,7 +72,7 @@ TEST_P(RegionTest, PixelsAreThoseOfTheWholeRender) {
     for (const PixelRect& r : kRects) {
         RenderOptions o = whole_options;
         o.region = r;
-        o.control.threads = 1 + (r.x0 % 3);  // and whatever the thread count
+        o.threads = 1 + (r.x0 % 3);  // and whatever the thread count
         const Frame part = render(scene, d, o);
         const std::string where = std::to_string(r.x0) + "," + std::to_string(r.y0) + "," +
                                   std::to_string(r.x1) + "," + std::to_string(r.y1);

@@ -1,6 +1,4 @@
-// ProgressBar (src/render/progress.h): the line it draws, when it draws, and its thread safety.
-#include "render/progress.h"
-
+// ProgressBar (src/app/progress_bar.h): the line it draws, when it draws, and its thread safety.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +6,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "app/progress_bar.h"
 
 namespace luz {
 namespace {

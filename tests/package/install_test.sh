@@ -12,6 +12,10 @@ trap 'rm -rf "$tmp"' EXIT
 cmake --install "$build_dir" --prefix "$tmp/prefix" >/dev/null
 test -x "$tmp/prefix/bin/luz"
 test -f "$tmp/prefix/include/luz/luz.h"
+# The public headers alone: no layer's header is installed, and luz.h needs none.
+test ! -e "$tmp/prefix/include/luz/internal"
+echo '#include <luz/luz.h>' >"$tmp/public.cpp"
+g++ -std=c++20 -fsyntax-only -I"$tmp/prefix/include" "$tmp/public.cpp"
 test -f "$tmp/prefix/lib/cmake/luz/luzConfig.cmake" ||
   test -f "$tmp"/prefix/lib/*/cmake/luz/luzConfig.cmake
 cmake -S "$source_dir/examples" -B "$tmp/build" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" \

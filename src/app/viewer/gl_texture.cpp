@@ -12,14 +12,7 @@ GlTexture::~GlTexture() {
 }
 
 void GlTexture::upload(const Image& img, Encoding e) {
-    bytes_.resize(static_cast<size_t>(img.width) * img.height * 4);
-    for (size_t i = 0; i < img.pixels.size(); ++i) {
-        const Rgb& c = img.pixels[i];
-        bytes_[4 * i + 0] = encode_8bit(c.x, e);
-        bytes_[4 * i + 1] = encode_8bit(c.y, e);
-        bytes_[4 * i + 2] = encode_8bit(c.z, e);
-        bytes_[4 * i + 3] = 255;
-    }
+    bytes_ = rgba8(img, e);
     if (!id_) glGenTextures(1, &id_);
     glBindTexture(GL_TEXTURE_2D, id_);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);

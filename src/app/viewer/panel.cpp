@@ -33,9 +33,8 @@ bool slider_float(PanelSlider id, float& value, const char* format = "%.3f",
 /// high end (a typed-in value may leave the slider's range; the loader's limit still holds).
 float clamp_to_limit(PanelSlider id, float value) {
     const SliderRange r = panel_slider_range(id);
-    const bool bounded = key_limit(panel_slider(id).key).limit.hi < kUnbounded;
     value = std::max(static_cast<float>(r.lo), value);
-    return bounded ? std::min(static_cast<float>(r.hi), value) : value;
+    return r.capped ? std::min(static_cast<float>(r.hi), value) : value;
 }
 
 /// A float dragged within the range the limits table gives.

@@ -1,10 +1,10 @@
-// The viewer panel's sliders: each one's label and the scene key whose limits (scene/limits.h)
+// The viewer panel's sliders: each one's label and the scene key whose limits (slider_range())
 // give its range. No GUI code, so that tests can check every range against the loader.
 #pragma once
 
 #include <string_view>
 
-#include "scene/limits.h"
+#include "luz/scene.h"
 
 namespace luz {
 

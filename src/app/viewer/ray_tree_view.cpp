@@ -79,20 +79,10 @@ void draw_ray_tree_panel(const RayTree& tree, const SceneDesc& desc, int x, int 
 
 void draw_ray_tree_overlay(ImDrawList* draw, const RayTree& tree, const SceneDesc& desc,
                            ImVec2 origin, float scale, int x, int y) {
-    const Camera cam = Camera::from(desc.camera, desc.image.width, desc.image.height);
     // World point → screen; false when it lies behind the camera plane (perspective).
     auto project = [&](const Vec3& p, ImVec2& out) {
-        const Vec3 v = cam.to_view(p);
-        float nx, ny;
-        if (cam.projection == Projection::orthographic) {
-            nx = v.x / cam.half_width;
-            ny = v.y / cam.half_height;
-        } else {
-            if (v.z <= 1e-4f) return false;
-            nx = v.x / (v.z * cam.half_width);
-            ny = v.y / (v.z * cam.half_height);
-        }
-        const float px = (nx + 1) * 0.5f * cam.width, py = (1 - ny) * 0.5f * cam.height;
+        float px, py;
+        if (!project_point(desc, p, px, py)) return false;
         out = ImVec2(origin.x + px * scale, origin.y + py * scale);
         return true;
     };

@@ -37,8 +37,8 @@ bool render_pass(const Scene& scene, const Settings& settings, const PassPlan& p
     if (!plan.antialiased) pass.render.antialias.mode = AaMode::none;
 
     RenderOptions options;
-    options.control.threads = threads;
-    options.control.cancel = cancel;
+    options.threads = threads;
+    options.cancel = cancel;
     if (show.term) options.aovs = {show.kind};
     Frame frame = render(scene, pass, options);
     if (show.term && !frame.aovs.empty()) {

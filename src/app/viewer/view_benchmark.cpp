@@ -25,7 +25,7 @@ int run_view_benchmark(const ViewOptions& o) {
     if (o.width > 0) overrides.push_back({"image.width", std::to_string(o.width), "--width"});
     if (o.height > 0) overrides.push_back({"image.height", std::to_string(o.height), "--height"});
     SceneDesc desc = load_scene(o.scene, overrides);
-    const int threads = resolve_threads(o.threads);
+    const int threads = render_threads(o.threads);
     std::printf("scene %s  %dx%d  %d threads\n", o.scene.c_str(), desc.image.width,
                 desc.image.height, threads);
 

@@ -57,7 +57,7 @@ class Viewer {
         : options_(o),
           edit_(std::move(desc)),
           camera0_(desc_.camera),
-          worker_(resolve_threads(o.threads)) {
+          worker_(render_threads(o.threads)) {
         panel_.image_path = desc_.name + ".png";
         panel_.scene_path = desc_.name + "_edited.json";
         if (!o.click.empty()) {
@@ -329,7 +329,7 @@ void Viewer::handle_event(const SDL_Event& e) {
 void Viewer::save_image() {
     try {
         RenderOptions options;
-        options.control.threads = options_.threads;
+        options.threads = options_.threads;
         write_frame(render(edit_.scene(), desc_, options), panel_.image_path, desc_.image.encoding);
         panel_.status = "wrote " + panel_.image_path;
     } catch (const std::exception& e) {
@@ -428,8 +428,8 @@ int Viewer::run() {
             if (frames_after_final >= 3) {
                 if (selected_) {
                     const std::string json = with_extension(options_.screenshot, ".json");
-                    write_file_atomically(json, ray_tree_json(tree_, desc_, sel_x_, sel_y_,
-                                                              full_.at(sel_x_, sel_y_)));
+                    write_files_together({{json, ray_tree_json(tree_, desc_, sel_x_, sel_y_,
+                                                               full_.at(sel_x_, sel_y_))}});
                 }
                 write_screenshot(options_.screenshot, win_w_, win_h_);
                 quit_ = true;

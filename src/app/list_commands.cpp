@@ -1,12 +1,12 @@
 // `luz scenes` and `luz materials`: listings of demo_scenes() and presets().
-#include "api/list_commands.h"
+#include "app/list_commands.h"
 
 #include <algorithm>
 #include <string>
 #include <vector>
 
-#include "scene/demo_scenes.h"
-#include "scene/presets.h"
+#include "luz/demo_scenes.h"
+#include "luz/presets.h"
 
 namespace luz {
 

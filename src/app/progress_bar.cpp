@@ -1,5 +1,5 @@
 // ProgressBar: drawing and rate limiting of the render's progress line on standard error.
-#include "render/progress.h"
+#include "app/progress_bar.h"
 
 #include <unistd.h>
 
