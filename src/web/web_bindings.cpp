@@ -125,7 +125,7 @@ EMSCRIPTEN_KEEPALIVE const uint8_t* luz_render(int divisor, int antialiased, int
         s.pass_width = pass.image.width;
         s.pass_height = pass.image.height;
         RenderOptions options;
-        options.control.threads = 1;
+        options.threads = 1;
         options.region = PixelRect{0, y0, pass.image.width, std::min(y1, pass.image.height)};
         if (term >= 0) options.aovs = {static_cast<AovKind>(term)};
         Frame frame = render(s.scene, pass, options);
