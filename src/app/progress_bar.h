@@ -7,23 +7,13 @@
 #include <mutex>
 #include <string>
 
+#include "luz/progress_text.h"
+
 namespace luz {
 
 /// One line of the bar for `fraction` done (0..1) after `elapsed_s` seconds, e.g.
 /// "[#####-----]  42%  ETA 3s": the bar of `bar_width` cells, then format_status().
 std::string format_progress(double fraction, double elapsed_s, int bar_width = 30);
-
-/// The words after the bar: the share done (format_percent()) and the time left, e.g.
-/// " 42%  ETA 3s", "0.04%  ETA 2h05m"; "ETA --" only while nothing is done, "done in 1.2s" at 1.
-/// Python's bar (luz._progress) shows the same words.
-std::string format_status(double fraction, double elapsed_s);
-
-/// The share done, rounded down: "0.04%" below 1 %, "4.2%" below 10 %, " 42%" above, so that
-/// a render whose pixels take seconds moves from its first pixels on.
-std::string format_percent(double fraction);
-
-/// A duration in seconds as a short human string: "3s", "2m05s", "1h02m".
-std::string format_duration(double seconds);
 
 /// True when standard error is a terminal (where a progress bar makes sense).
 bool stderr_is_terminal();

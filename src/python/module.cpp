@@ -14,7 +14,7 @@
 #include "python/json_convert.h"
 #include "python/render_call.h"
 #include "python/scene_handle.h"
-#include "render/progress.h"
+#include "luz/progress_text.h"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
