@@ -11,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "api/ray_tree_json.h"
 #include "luz/luz.h"
 
 namespace {
