@@ -1,11 +1,11 @@
-// WideBvh<W> (Bvh4, Bvh8): the binary Bvh collapsed into W-wide nodes holding their child boxes
-// side by side, tested by one SIMD slab test: fewer levels and node visits. Same leaves, order()
-// and traversal contract as Bvh (nearest and any with slot callbacks).
+// WideBvh<W> (Bvh8; Bvh4 in the tests): the binary Bvh collapsed into W-wide nodes holding their
+// child boxes side by side, tested by one SIMD slab test: fewer levels and node visits. Same
+// leaves, order() and traversal contract as Bvh (nearest and any with slot callbacks).
 //
 //     const Bvh8 bvh = Bvh8::build(boxes);  // or Bvh8(Bvh::build(boxes))
 //     bvh.nearest(ray, 0.0f, t_max, box_tests, [&](uint32_t slot, float& t_max) { ... });
 //
-// Bvh8 tests its eight boxes with AVX (else as two halves with SSE2); Bvh4 with SSE2.
+// Bvh8 tests its eight boxes with AVX (else as two halves with SSE2); W = 4 with SSE2.
 #pragma once
 
 #include <cmath>
@@ -13,6 +13,10 @@
 #include <limits>
 #include <span>
 #include <vector>
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 #include "geometry/bvh.h"
 #include "math/huge_pages.h"
@@ -119,7 +123,6 @@ class WideBvh {
     float reach_ = std::numeric_limits<float>::infinity();  // max |coordinate| of the boxes
 };
 
-using Bvh4 = WideBvh<4>;
 using Bvh8 = WideBvh<8>;
 
 namespace bvh_detail {
@@ -511,7 +514,6 @@ bool WideBvh<W>::any_leaves(const Ray& r, float t_min, float t_max, uint64_t& bo
     }
 }
 
-extern template class WideBvh<4>;
 extern template class WideBvh<8>;
 
 }  // namespace luz
