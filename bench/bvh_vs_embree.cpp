@@ -26,6 +26,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "bvh_reference.h"  // tests/geometry: the binary Bvh's traversal
 #include "geometry/bvh.h"
 #include "geometry/mesh.h"
 #include "geometry/scene.h"
@@ -635,7 +636,7 @@ void run_mesh(const MeshSource& source, const Options& opt, std::vector<Row>& ro
     // 2. Build times. luz: triangle boxes + Bvh::build (+ the collapse to Bvh8), in a TBB arena
     //    of 1 or 2 threads made beforehand (as Embree's device is); Embree: rtcCommitScene on a
     //    device of 1 or 2 threads.
-    LuzAccel<Bvh> luz2;
+    LuzAccel<BinaryBvh> luz2;
     LuzAccel<Bvh8> luz8;
     luz2.mesh = luz8.mesh = &mesh;
     for (int threads : opt.threads) {
@@ -644,8 +645,8 @@ void run_mesh(const MeshSource& source, const Options& opt, std::vector<Row>& ro
         std::vector<double> s2, s8;
         for (int k = 0; k < build_reps; ++k) {
             double t0 = now_seconds();
-            Bvh b2;
-            arena.execute([&] { b2 = Bvh::build(triangle_boxes(mesh), opt.bvh); });
+            BinaryBvh b2;
+            arena.execute([&] { b2 = BinaryBvh::build(triangle_boxes(mesh), opt.bvh); });
             s2.push_back(now_seconds() - t0);
             t0 = now_seconds();
             decltype(luz8.bvh) b8;

@@ -14,6 +14,7 @@
 #include <memory>
 #include <random>
 
+#include "bvh_reference.h"
 #include "geometry/prim_block.h"
 #include "geometry/scene.h"
 #include "geometry/scene_query.h"
@@ -886,7 +887,7 @@ TEST(Bvh, SahCountingBlocks) {
 TEST(Bvh, EmptyAndCoincidentInputs) {
     EXPECT_TRUE(Bvh::build({}).empty());
     const std::vector<Bounds3> same(1000, Bounds3{{0, 0, 0}, {1, 1, 1}});
-    const Bvh one = Bvh::build(same);  // nothing to split: a single leaf
+    const BinaryBvh one = BinaryBvh::build(same);  // nothing to split: a single leaf
     ASSERT_EQ(one.nodes().size(), 1u);
     EXPECT_EQ(one.nodes()[0].count, 1000u);
     uint64_t tests = 0;
@@ -914,7 +915,7 @@ TEST(Bvh, NearestVisitsNearChildrenFirstAndSkipsWhatLiesBeyond) {
     // a row of unit boxes along x; a ray along +x hits box 0 first and stops there
     std::vector<Bounds3> boxes;
     for (int i = 0; i < 64; ++i) boxes.push_back({{2.0f * i, 0, 0}, {2.0f * i + 1, 1, 1}});
-    const Bvh bvh = Bvh::build(boxes);
+    const BinaryBvh bvh = BinaryBvh::build(boxes);
     uint64_t tests = 0;
     std::vector<uint32_t> order;
     float t_max = std::numeric_limits<float>::infinity();

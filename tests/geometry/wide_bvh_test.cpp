@@ -15,6 +15,7 @@
 #include <set>
 #include <vector>
 
+#include "bvh_reference.h"
 #include "geometry/shapes.h"
 #include "geometry_fixtures.h"
 
@@ -116,7 +117,7 @@ std::vector<Ray> random_rays(const Soup& s, int n, uint32_t seed) {
 template <class B>
 void expect_same_answers_as_binary(int triangles, uint32_t seed) {
     const Soup s = make_soup(triangles, seed);
-    const Bvh binary = Bvh::build(s.boxes);
+    const BinaryBvh binary = BinaryBvh::build(s.boxes);
     const B wide(Bvh::build(s.boxes));
     ASSERT_GT(wide.nodes().size(), 1u);
     EXPECT_EQ(wide.order(), binary.order());
@@ -274,7 +275,7 @@ Soup make_grid(int n) {
 template <class B>
 void expect_least_sah(const Soup& s, bool fewer_nodes) {
     constexpr int W = sizeof(B::Node::child) / sizeof(uint32_t);
-    const Bvh binary = Bvh::build(s.boxes);
+    const BinaryBvh binary = BinaryBvh::build(s.boxes);
     std::set<std::pair<uint32_t, uint32_t>> binary_leaves, wide_leaves;
     for (const BvhNode& n : binary.nodes())
         if (n.leaf()) binary_leaves.insert({n.offset, n.count});
