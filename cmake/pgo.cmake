@@ -1,11 +1,12 @@
 # Profile-guided optimisation of the release build (LUZ_PGO, on in the `release` preset).
 # The first build of a build folder first builds an instrumented `luz` of the same sources in
-# <build>/pgo/build, runs cmake/pgo_train.cmake's renders with it (every demo scene through the
-# pipelines and antialiasing modes, a few seconds), and then compiles everything with the
-# profile it wrote to <build>/pgo/profile. Functions the renders never ran are optimised as
-# without a profile (-fprofile-partial-training). No floating-point option changes: the images
-# are the same bits as without PGO. Delete <build>/pgo to train again after large changes (a
-# stale profile is only less useful: source changes are ignored with their warning silenced).
+# <build>/pgo/build, runs cmake/pgo_train.cmake's renders with it (scenes no benchmark times,
+# through the pipelines and antialiasing modes, a few seconds), and then compiles everything
+# with the profile it wrote to <build>/pgo/profile. Functions the renders never ran are
+# optimised as without a profile (-fprofile-partial-training). No floating-point option
+# changes: the images are the same bits as without PGO. Delete <build>/pgo to train again after
+# large changes (a stale profile is only less useful: source changes are ignored with their
+# warning silenced).
 if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
   message(FATAL_ERROR "LUZ_PGO needs GCC (its -fprofile-use and -fprofile-prefix-path)")
 endif()
@@ -25,7 +26,7 @@ add_custom_command(
           -DGENERATOR=${CMAKE_GENERATOR} -DCXX=${CMAKE_CXX_COMPILER} -DNATIVE=${LUZ_NATIVE}
           -DPIC=$<BOOL:${CMAKE_POSITION_INDEPENDENT_CODE}>
           -P ${PROJECT_SOURCE_DIR}/cmake/pgo_train.cmake
-  DEPENDS ${PROJECT_SOURCE_DIR}/cmake/pgo_train.cmake
+  DEPENDS ${PROJECT_SOURCE_DIR}/cmake/pgo_train.cmake ${PROJECT_SOURCE_DIR}/scripts/make_big_mesh.py
   COMMENT "PGO: building an instrumented luz and running the training renders"
   USES_TERMINAL)
 add_custom_target(luz_pgo_profile DEPENDS ${luz_pgo_stamp})
