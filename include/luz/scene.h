@@ -137,6 +137,15 @@ struct SliderRange {
 };
 SliderRange slider_range(std::string_view key);
 
+/// A numeric scene key that has a slider: its path ("lights.*.radius", "objects.sphere.radius")
+/// and whether it takes whole numbers.
+struct SliderKey {
+    std::string key;
+    bool integer = false;
+};
+/// Every numeric scene key with a range, in the loader's order (the web page's panel).
+std::vector<SliderKey> slider_keys();
+
 /// The scene as JSON text as the loader understood it (mesh paths relative to `out_dir`).
 std::string scene_to_json(const SceneDesc& desc, const std::string& out_dir);
 

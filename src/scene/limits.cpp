@@ -81,4 +81,10 @@ SliderRange slider_range(std::string_view key) {
     return {l.ui_lo, l.ui_hi, l.hi < kUnbounded};
 }
 
+std::vector<SliderKey> slider_keys() {
+    std::vector<SliderKey> keys;
+    for (const KeyLimit& k : key_limits()) keys.push_back({k.key, k.kind == NumberKind::integer});
+    return keys;
+}
+
 }  // namespace luz

@@ -103,10 +103,10 @@ EMSCRIPTEN_KEEPALIVE const char* luz_limits() {
     std::ostringstream out;
     out << '{';
     bool first = true;
-    for (const KeyLimit& k : key_limits()) {
+    for (const SliderKey& k : slider_keys()) {
         const SliderRange r = slider_range(k.key);
         out << (first ? "" : ",") << '"' << k.key << "\":[" << r.lo << ',' << r.hi << ','
-            << (k.kind == NumberKind::integer ? 1 : 0) << ']';
+            << (k.integer ? 1 : 0) << ']';
         first = false;
     }
     out << '}';
@@ -136,16 +136,7 @@ EMSCRIPTEN_KEEPALIVE const uint8_t* luz_render(int divisor, int antialiased, int
             picture = std::move(frame.image);
         }
         s.stats = frame.stats;
-        const size_t n = static_cast<size_t>(picture.width) * picture.height;
-        s.rgba.resize(n * 4);
-        const Encoding e = s.desc.image.encoding;
-        for (size_t i = 0; i < n; ++i) {
-            const Rgb& c = picture.pixels[i];
-            s.rgba[4 * i + 0] = encode_8bit(c.x, e);
-            s.rgba[4 * i + 1] = encode_8bit(c.y, e);
-            s.rgba[4 * i + 2] = encode_8bit(c.z, e);
-            s.rgba[4 * i + 3] = 255;
-        }
+        s.rgba = rgba8(picture, s.desc.image.encoding);
         return s.rgba.data();
     } catch (const std::exception& e) {
         hand_out(one_line(e.what()));
