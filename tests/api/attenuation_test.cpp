@@ -128,9 +128,9 @@ TEST(Attenuation, ImplicitLightGivesOneAtTheLookAtPointUnderEveryLaw) {
 }
 
 TEST(Attenuation, DefaultIsLinearAndBadValuesNameTheKey) {
-    EXPECT_EQ(parse_scene(R"({"objects": []})", "s.json", ".").attenuation, Attenuation::linear);
+    EXPECT_EQ(parse_scene(R"({"objects": []})", "s.json", ".", {}).attenuation, Attenuation::linear);
     try {
-        parse_scene(R"({"attenuation": "cubic"})", "s.json", ".");
+        parse_scene(R"({"attenuation": "cubic"})", "s.json", ".", {});
         ADD_FAILURE() << "no error";
     } catch (const SceneError& e) {
         EXPECT_NE(std::string(e.what()).find("attenuation: unknown value \"cubic\""),
