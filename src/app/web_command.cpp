@@ -65,7 +65,7 @@ int run_web(const WebOptions& o) {
             return 1;
         }
     }
-    write_file_atomically((dir / "luz.html").string(), std::string(page));
+    write_files_together({{(dir / "luz.html").string(), std::string(page)}});
     return 0;
 }
 
