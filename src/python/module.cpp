@@ -8,13 +8,13 @@
 #include <nlohmann/json.hpp>
 
 #include "luz/luz.h"
+#include "luz/progress_text.h"
 #include "python/arguments.h"
 #include "python/frame_object.h"
 #include "python/interruptible.h"
 #include "python/json_convert.h"
 #include "python/render_call.h"
 #include "python/scene_handle.h"
-#include "luz/progress_text.h"
 
 namespace py = pybind11;
 using namespace pybind11::literals;

@@ -128,7 +128,8 @@ TEST(Attenuation, ImplicitLightGivesOneAtTheLookAtPointUnderEveryLaw) {
 }
 
 TEST(Attenuation, DefaultIsLinearAndBadValuesNameTheKey) {
-    EXPECT_EQ(parse_scene(R"({"objects": []})", "s.json", ".", {}).attenuation, Attenuation::linear);
+    EXPECT_EQ(parse_scene(R"({"objects": []})", "s.json", ".", {}).attenuation,
+              Attenuation::linear);
     try {
         parse_scene(R"({"attenuation": "cubic"})", "s.json", ".", {});
         ADD_FAILURE() << "no error";
