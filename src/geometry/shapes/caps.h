@@ -42,4 +42,22 @@ inline void emit_cap(Emitter& e, const Circle& circle, float z, bool up, float r
     }
 }
 
+/// The side between the rim of radius 1 at z = 0 and the rim of radius `k` at z = 1, one segment
+/// along it, each vertex with the normal (cosφ, sinφ, m) (a cylinder: k = 1, m = 0); outward.
+inline void emit_side(Emitter& e, const Circle& circle, float k = 1.0f, float m = 0.0f) {
+    const int n = static_cast<int>(circle.c.size());
+    uint32_t bottom = 0;
+    for (int j = 0; j < n; ++j) {
+        const Vec3 nr{circle.c[j], circle.s[j], m};
+        const uint32_t b = e.vertex({circle.c[j], circle.s[j], 0}, nr);
+        e.vertex({circle.c[j] * k, circle.s[j] * k, 1}, nr);
+        if (j == 0) bottom = b;
+    }
+    // Vertex (j, 0) is bottom + 2j, (j, 1) is bottom + 2j + 1; φ̂ × ẑ points outwards.
+    for (int j = 0; j < n; ++j) {
+        const uint32_t a = bottom + 2 * j, b = bottom + 2 * ((j + 1) % n);
+        e.quad(a, b, b + 1, a + 1);
+    }
+}
+
 }  // namespace luz::shapes

@@ -116,18 +116,7 @@ struct cone {
         const float k = s.apex, m = 1.0f - k;
         e.reserve(2 * size_t(n) + (s.caps ? 2 * size_t(n + 1) : 0),
                   2 * size_t(n) + (s.caps ? 2 * n : 0));
-        uint32_t bottom = 0;
-        for (int j = 0; j < n; ++j) {
-            const Vec3 nr{circle.c[j], circle.s[j], m};
-            const uint32_t b = e.vertex({circle.c[j], circle.s[j], 0}, nr);
-            e.vertex({circle.c[j] * k, circle.s[j] * k, 1}, nr);
-            if (j == 0) bottom = b;
-        }
-        // Vertex (j, 0) is bottom + 2j, (j, 1) is bottom + 2j + 1; as the cylinder's, outward.
-        for (int j = 0; j < n; ++j) {
-            const uint32_t a = bottom + 2 * j, b = bottom + 2 * ((j + 1) % n);
-            e.quad(a, b, b + 1, a + 1);
-        }
+        emit_side(e, circle, k, m);
         if (s.caps) {
             emit_cap(e, circle, 0.0f, false);
             emit_cap(e, circle, 1.0f, true, k);

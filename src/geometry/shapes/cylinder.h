@@ -76,18 +76,7 @@ struct cylinder {
         const Circle circle(n);
         e.reserve(2 * size_t(n) + (s.caps ? 2 * size_t(n + 1) : 0),
                   2 * size_t(n) + (s.caps ? 2 * n : 0));
-        uint32_t bottom = 0;
-        for (int j = 0; j < n; ++j) {
-            const Vec3 nr{circle.c[j], circle.s[j], 0};
-            const uint32_t b = e.vertex({circle.c[j], circle.s[j], 0}, nr);
-            e.vertex({circle.c[j], circle.s[j], 1}, nr);
-            if (j == 0) bottom = b;
-        }
-        // Vertex (j, 0) is bottom + 2j, (j, 1) is bottom + 2j + 1; φ̂ × ẑ = r̂.
-        for (int j = 0; j < n; ++j) {
-            const uint32_t a = bottom + 2 * j, b = bottom + 2 * ((j + 1) % n);
-            e.quad(a, b, b + 1, a + 1);
-        }
+        emit_side(e, circle);
         if (s.caps) {
             emit_cap(e, circle, 0.0f, false);
             emit_cap(e, circle, 1.0f, true);
