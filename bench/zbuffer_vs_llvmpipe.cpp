@@ -1,6 +1,7 @@
 // Benchmark: luz's zbuffer frame time against Mesa's llvmpipe (OpenGL through OSMesa) on the
-// same tessellated torus (~5k, ~100k, ~1M triangles), 1024×1024, orthographic, SPEC §1 phong
-// with one light, per-pixel shading, 1 and 2 threads. Results go to docs/BENCHMARKS.md.
+// same tessellated torus (~5k, ~100k, ~1M triangles), 1024×1024, orthographic,
+// docs/SCENES.md#models phong with one light, per-pixel shading, 1 and 2 threads. Results go to
+// docs/BENCHMARKS.md.
 //
 // llvmpipe reads LP_NUM_THREADS once, when its screen is created (the first context of the
 // process), so each llvmpipe thread count runs in its own child process (this program
@@ -245,7 +246,7 @@ struct Gl {
     }
 };
 
-// The same orthographic projection as luz's camera (SPEC §1.3), as one matrix.
+// The same orthographic projection as luz's camera (docs/SCENES.md#geometry), as one matrix.
 const char* kVertexShader = R"(#version 330 core
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
@@ -259,7 +260,7 @@ void main() {
 }
 )";
 
-// SPEC §1 phong with one light, two-sided normals, exactly as shade() computes it:
+// docs/SCENES.md#models phong with one light, two-sided normals, exactly as shade() computes it:
 // I = Ia·Ka + Il/(d+K)·(Kd·cosθ + Ks·cosα^n).
 const char* kFragmentShader = R"(#version 330 core
 in vec3 P;
@@ -276,7 +277,7 @@ uniform vec3 Il;
 out vec4 color;
 void main() {
     vec3 N = normalize(N_in);
-    if (dot(N, S) < 0.0) N = -N;  // two-sided normals (SPEC 1.3)
+    if (dot(N, S) < 0.0) N = -N;  // two-sided normals (docs/SCENES.md#geometry)
     vec3 I = Ia * Ka;
     vec3 to_light = Lp - P;
     float d = length(to_light);
@@ -390,8 +391,9 @@ int llvmpipe_child(int level, const std::string& image_path, const Options& opt)
     }
     gl.glUseProgram(program);
 
-    // clip_from_world: x = (p−eye)·u / half_width, y = (p−eye)·v / half_height (SPEC §1.3),
-    // z = the view depth −(p−eye)·w mapped from [near, far] (the mesh's extent) to [−1, 1].
+    // clip_from_world: x = (p−eye)·u / half_width, y = (p−eye)·v / half_height
+    // (docs/SCENES.md#geometry), z = the view depth −(p−eye)·w mapped from [near, far] (the mesh's
+    // extent) to [−1, 1].
     const SceneDesc& desc = torus.desc;
     const Camera cam = Camera::from(desc.camera, kWidth, kHeight);
     float near = 1e30f, far = -1e30f;

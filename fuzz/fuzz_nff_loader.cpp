@@ -1,6 +1,6 @@
-// libFuzzer target: NFF text → validated scene (parse_scene on a file named *.nff, SPEC §2.1).
-// Bad input must end in InputError (exit 2 in `luz`); anything else — a crash, a sanitizer
-// report, another exception — is a bug.
+// libFuzzer target: NFF text → validated scene (parse_scene on a file named *.nff,
+// docs/SCENES.md#nff). Bad input must end in InputError (exit 2 in `luz`); anything else — a crash,
+// a sanitizer report, another exception — is a bug.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>

@@ -1,4 +1,4 @@
-// luz.html's page script (SPEC §6): the panel, the canvas at 1:1 and the mouse; every edit is a
+// luz.html's page script (docs/WEB.md): the panel, the canvas at 1:1 and the mouse; every edit is a
 // scene path and a JSON value, as `luz render --set PATH=JSON` takes it, sent to the worker.
 'use strict';
 const $ = (id) => document.getElementById(id);
@@ -252,7 +252,7 @@ $('image').onwheel = (e) => {
 };
 
 // --- a pixel's ray tree drawn over the image: each ray from its origin to its hit (or out of
-// the picture), projected with the camera of SPEC §1.3 (x = 2px/W − 1, y = 1 − 2py/H)
+// the picture), projected with the camera of docs/SCENES.md#geometry (x = 2px/W − 1, y = 1 − 2py/H)
 function project(P) {
   const c = camera(), W = state.scene.image.width, H = state.scene.image.height;
   const w = norm(sub(c.position, c.look_at)), u = norm(cross(c.up || [0, 1, 0], w)), v = cross(w, u);

@@ -1,4 +1,4 @@
-// luz's render worker (SPEC §6): runs after Emscripten's luz_core.js (createLuz) in one Blob;
+// luz's render worker (docs/WEB.md): runs after Emscripten's luz_core.js (createLuz) in one Blob;
 // loads scenes with the page's edits (--set paths), renders progressive passes band by band
 // and yields between bands, so that a newer edit cancels the pass under way.
 'use strict';

@@ -1,5 +1,5 @@
-// luz's public API, part 4: animations (SPEC §2 `animation`, §3 `--frames`). A scene with an
-// `animation` key is a sequence of frames, each a SceneDesc of its own (keyframed values set,
+// luz's public API, part 4: animations (docs/SCENES.md#animation, docs/CLI.md#frames). A scene with
+// an `animation` key is a sequence of frames, each a SceneDesc of its own (keyframed values set,
 // the camera orbited); load once, every frame checked, then take the frames one by one.
 #pragma once
 

@@ -1,5 +1,6 @@
-// AnimationDesc: the `animation` key (SPEC §2) as plain structs: keyframed values on scene
-// paths, interpolated linearly and held outside the keys, and a turntable orbit of the camera.
+// AnimationDesc: the `animation` key (docs/SCENES.md#scene-files) as plain structs: keyframed
+// values on scene paths, interpolated linearly and held outside the keys, and a turntable orbit of
+// the camera.
 #pragma once
 
 #include <string>

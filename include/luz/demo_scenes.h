@@ -1,4 +1,4 @@
-// Built-in scenes, named demo:NAME wherever a scene path is accepted (SPEC §2).
+// Built-in scenes, named demo:NAME wherever a scene path is accepted (docs/SCENES.md#scene-files).
 #pragma once
 
 #include <span>

@@ -1,5 +1,5 @@
-// Material: the constants of the illumination models (SPEC §1, §1.4, §2), and the checker
-// pattern (scene/material.h: the constants it gives at a point).
+// Material: the constants of the illumination models (docs/SCENES.md#models, #reflectance,
+// #scene-files), and the checker pattern (scene/material.h: the constants it gives at a point).
 #pragma once
 
 #include <optional>
@@ -16,9 +16,10 @@ struct Checker {
     Rgb kd{0.1f};
 };
 
-/// The reflectance curve w(i, λ) of the specular term (SPEC §1.4; shading/reflectance.h).
+/// The reflectance curve w(i, λ) of the specular term (docs/SCENES.md#reflectance;
+/// shading/reflectance.h).
 enum class Reflectance {
-    constant,  ///< w = Ks: the models of SPEC §1 exactly
+    constant,  ///< w = Ks: the models of docs/SCENES.md#models exactly
     schlick,   ///< w(θ_j) = Ks + (1 − Ks)·(1 − cosθ_j)^5 per channel
 };
 

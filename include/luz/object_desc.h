@@ -1,5 +1,5 @@
 // ObjectDesc: one object of the scene as its JSON keys define it, and the list of shape types
-// (SPEC §2). The keys' table and checks are the loader's (scene/shape_desc.h).
+// (docs/SCENES.md#scene-files). The keys' table and checks are the loader's (scene/shape_desc.h).
 #pragma once
 
 #include <array>
@@ -15,8 +15,8 @@ namespace luz {
 
 struct MeshData;  // an OBJ file's triangles as read (scene/mesh_data.h)
 
-/// Every shape of SPEC §2, in one list: X(name) for each `type` value. The enum, the loader's and
-/// writer's key table and the geometry's dispatch are all generated from it.
+/// Every shape of docs/SCENES.md#scene-files, in one list: X(name) for each `type` value. The enum,
+/// the loader's and writer's key table and the geometry's dispatch are all generated from it.
 #define LUZ_SHAPES(X) X(sphere) X(box) X(cylinder) X(cone) X(torus) X(plane) X(triangle) X(mesh)
 
 enum class ShapeType {

@@ -76,7 +76,7 @@ void write_files_together(std::vector<std::pair<std::string, std::string>> files
 /// The name of a pipeline as the scene file spells it ("zbuffer", "raycast", "raytrace").
 const char* pipeline_name(Pipeline p);
 
-/// The statistics of a render of `desc` as the JSON text `--stats` writes (SPEC §3).
+/// The statistics of a render of `desc` as the JSON text `--stats` writes (docs/CLI.md).
 std::string stats_json(const RenderStats& stats, const SceneDesc& desc);
 
 /// Bytes of the process's peak resident memory (getrusage ru_maxrss).

@@ -1,5 +1,5 @@
 // Material presets of the lecture and three metals: Portuguese names with English aliases
-// (SPEC §2, §1.4).
+// (docs/SCENES.md#scene-files, #reflectance).
 #pragma once
 
 #include <span>

@@ -17,7 +17,8 @@ struct LightTerm {
     float cos_alpha = 0;   ///< max(0, R_j·S), 0 when N·L_j ≤ 0
     Rgb diffuse;  ///< vis_j·Il_j·Kd·cosθ_j (lambert) or vis_j·Il_j/(d_j+K)·Kd·cosθ_j (phong)
     Rgb specular;  ///< vis_j·Il_j/(d_j+K)·Ks·cosα_j^n (phong only); (d_j+K): the law's divisor
-    Rgb unshadowed;  ///< diffuse + specular as they would be with vis_j = 1 (SPEC §1.5 shadow)
+    Rgb unshadowed;  ///< diffuse + specular as they would be with vis_j = 1 (docs/SCENES.md#terms
+                     ///< shadow)
 };
 
 enum class RayKind { primary, reflection, refraction };

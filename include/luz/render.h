@@ -18,9 +18,9 @@
 
 namespace luz {
 
-/// A per-term image (SPEC §1.5): which term, its name (`ambient`, `diffuse`, … `tests`) and its
-/// pixels, filtered with the colour's antialiasing weights. Colour terms and `normal` are RGB;
-/// `depth` and `tests` are one value per pixel, held in all three channels of `image`.
+/// A per-term image (docs/SCENES.md#terms): which term, its name (`ambient`, `diffuse`, … `tests`)
+/// and its pixels, filtered with the colour's antialiasing weights. Colour terms and `normal` are
+/// RGB; `depth` and `tests` are one value per pixel, held in all three channels of `image`.
 struct Aov {
     AovKind kind = AovKind::ambient;
     std::string name;
@@ -57,7 +57,7 @@ struct RenderOptions {
     std::function<void(const std::string&)> warning;
     bool want_aa_mask = false;  ///< fill Frame::aa_mask
     std::vector<AovKind> aovs;  ///< the per-term images to fill (parse_aov_list("all", …))
-    /// When set, only these pixels (X1, Y1 exclusive; `--region`, SPEC §3): the Frame is
+    /// When set, only these pixels (X1, Y1 exclusive; `--region`, docs/CLI.md): the Frame is
     /// region.width() × region.height(), its pixels bit for bit those of the same rectangle of
     /// the whole render (antialiasing and its filters included). render() checks it with
     /// check_region().

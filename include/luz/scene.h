@@ -17,7 +17,7 @@
 namespace luz {
 
 /// Loads `source` — a scene file or "demo:NAME" — and applies `overrides` in order (as
-/// `--set PATH=JSON` does), validated once (SPEC §2). Throws SceneError.
+/// `--set PATH=JSON` does), validated once (docs/SCENES.md#scene-files). Throws SceneError.
 SceneDesc load_scene(const std::string& source, const std::vector<Override>& overrides);
 
 /// The same from JSON text: `label` names it in messages, `base_dir` resolves mesh paths.
@@ -42,8 +42,8 @@ void write_scene(const std::string& path, const SceneDesc& desc);
 /// The cap on what loading a scene may use (its text, OBJ files, meshes), in bytes.
 void set_memory_limit(uint64_t bytes);
 
-/// The scene keys a front end's render options set (SPEC §3 `--pipeline` … `--threshold`,
-/// SPEC §5 the Python keywords of the same names), each as the user gave it: a number's text
+/// The scene keys a front end's render options set (docs/CLI.md `--pipeline` … `--threshold`,
+/// docs/PYTHON.md the Python keywords of the same names), each as the user gave it: a number's text
 /// or a word; an unset one keeps the scene's value.
 struct SceneOptions {
     std::optional<std::string> pipeline, model, width, height, max_depth, aa, samples, threshold;

@@ -1,4 +1,5 @@
-// SceneDesc: the validated scene as plain structs, every default filled (SPEC §2).
+// SceneDesc: the validated scene as plain structs, every default filled
+// (docs/SCENES.md#scene-files).
 #pragma once
 
 #include <array>
@@ -55,7 +56,8 @@ struct RenderDesc {
     int max_depth = 5;
     bool tree_attenuation = false;
     /// A secondary ray whose weight (the product of the reflection and transparency
-    /// coefficients on its path from the camera) is below this is not traced (SPEC §2).
+    /// coefficients on its path from the camera) is below this is not traced
+    /// (docs/SCENES.md#scene-files).
     float min_weight = 0;
     AntialiasDesc antialias;
 };

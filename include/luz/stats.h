@@ -1,4 +1,4 @@
-// RenderStats: what a render counted and measured, written by `--stats FILE` (SPEC §3).
+// RenderStats: what a render counted and measured, written by `--stats FILE` (docs/CLI.md).
 #pragma once
 
 #include <cstdint>
@@ -23,10 +23,10 @@ struct RenderStats {
     /// Share = intersect_sampled_seconds / sampled_seconds.
     double intersect_sampled_seconds = 0, sampled_seconds = 0;
     uint64_t peak_memory_bytes = 0;
-    /// --region X0,Y0,X1,Y1 (SPEC §3): the rectangle rendered; all 0 for the whole image.
+    /// --region X0,Y0,X1,Y1 (docs/CLI.md): the rectangle rendered; all 0 for the whole image.
     int region[4] = {0, 0, 0, 0};
-    /// Under mpirun (SPEC §3.1): the number of processes (0: not shared) and the primary rays
-    /// each one traced, by rank; they add up to rays_primary.
+    /// Under mpirun (docs/DISTRIBUTED.md): the number of processes (0: not shared) and the primary
+    /// rays each one traced, by rank; they add up to rays_primary.
     int processes = 0;
     std::vector<uint64_t> primary_rays_by_process;
     /// Under mpirun, what rank 0 received: messages, tiles and their bytes, and the bytes it

@@ -1,4 +1,4 @@
-// The per-term images of SPEC §1.5 (AOVs) a render may fill: their kinds and names.
+// The per-term images of docs/SCENES.md#terms (AOVs) a render may fill: their kinds and names.
 #pragma once
 
 #include <cstdint>

@@ -10,7 +10,8 @@ struct Vec3 {
 
     constexpr Vec3() = default;
     constexpr Vec3(float x_, float y_, float z_) : x(x_), y(y_), z(z_) {}
-    /// A scalar means the same value in all three components (SPEC §1: scalar for RGB).
+    /// A scalar means the same value in all three components (docs/SCENES.md#models: scalar for
+    /// RGB).
     constexpr explicit Vec3(float s) : x(s), y(s), z(s) {}
 
     constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
@@ -25,7 +26,7 @@ struct Vec3 {
     constexpr bool operator==(const Vec3&) const = default;
 };
 
-/// RGB colour, linear, per channel (SPEC §1).
+/// RGB colour, linear, per channel (docs/SCENES.md#models).
 using Rgb = Vec3;
 
 constexpr Vec3 operator+(Vec3 a, const Vec3& b) { return a += b; }

@@ -50,8 +50,9 @@ FrameRange parse_frames(const std::string& text, const Animation& animation,
                         const std::string& option) {
     const std::string label = option + " " + text;
     if (!animation.animated()) {
-        throw SceneError(label + ": " + animation.first().source +
-                         " has no animation (add an \"animation\" key, SPEC §2)");
+        throw SceneError(
+            label + ": " + animation.first().source +
+            " has no animation (add an \"animation\" key, docs/SCENES.md#scene-files)");
     }
     const int n = animation.frames();
     const std::string frames = "the scene has frames 0 to " + std::to_string(n - 1);

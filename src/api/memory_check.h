@@ -26,8 +26,8 @@ struct MemoryEstimate {
 /// The estimate for `desc` (its meshes already loaded): image; antialiasing (grid works in
 /// bounded tiles, adaptive keeps every pixel corner); ~2·t² triangles per curved shape at
 /// tessellation t in the zbuffer; per mesh triangle its share of vertices, indices and BVH;
-/// per object its description and built shape; `aov_count` per-term images (SPEC §1.5) asked
-/// for besides the image.
+/// per object its description and built shape; `aov_count` per-term images (docs/SCENES.md#terms)
+/// asked for besides the image.
 MemoryEstimate estimate_memory(const SceneDesc& desc, int aov_count = 0);
 
 // default_memory_limit() (engine/luz_engine.h) and check_memory() (luz/render.h) are

@@ -72,7 +72,7 @@ constexpr float kViridisEnd[3] = {0.993248f, 0.906157f, 0.143936f};  // at 1
 
 namespace {
 
-/// viridis at f in [0, 1]: the colour map of the `tests` picture (README shows its scale).
+/// viridis at f in [0, 1]: the colour map of the `tests` picture (docs/CLI.md#aov shows its scale).
 Rgb viridis(float f) {
     if (!(f > 0)) f = 0;
     if (f > 1) f = 1;

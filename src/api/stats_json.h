@@ -1,4 +1,4 @@
-// `--stats FILE`: the render's statistics as JSON (SPEC §3).
+// `--stats FILE`: the render's statistics as JSON (docs/CLI.md).
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -1,5 +1,5 @@
 // The `luz` command line: parses it (CLI11) and maps outcomes to exit statuses: 0 success,
-// 2 bad input (one line on standard error), 1 any other failure (SPEC §3). Shared by `luz`
+// 2 bad input (one line on standard error), 1 any other failure (docs/CLI.md). Shared by `luz`
 // (app/main.cpp) and, on rank 0, by `luz-mpi` (src/mpi/), which renders frames its own way.
 #include "app/cli_main.h"
 

@@ -1,4 +1,4 @@
-// The `luz render` options (SPEC §3) and how the scene-overriding ones become Overrides.
+// The `luz render` options (docs/CLI.md) and how the scene-overriding ones become Overrides.
 #pragma once
 
 #include <cstdint>
@@ -20,12 +20,12 @@ struct RenderArgs {
     std::string scene;   ///< a file path or demo:NAME
     std::string output;  ///< empty: the scene's name + ".png"
     std::optional<std::string> pipeline, model, width, height, max_depth, aa, samples, threshold;
-    std::vector<std::string> sets;      ///< each "PATH=JSON", in the order given
-    int threads = 0;                    ///< 0: all cores
-    std::string stats_file;             ///< empty: no statistics file
-    std::string aa_mask_file;           ///< empty: no image of the adaptively refined pixels
-    std::string aovs;                   ///< --aov NAME[,NAME…] or all (SPEC §1.5)
-    std::string checkpoint;             ///< --checkpoint FILE: finished tiles kept there (SPEC §3)
+    std::vector<std::string> sets;  ///< each "PATH=JSON", in the order given
+    int threads = 0;                ///< 0: all cores
+    std::string stats_file;         ///< empty: no statistics file
+    std::string aa_mask_file;       ///< empty: no image of the adaptively refined pixels
+    std::string aovs;               ///< --aov NAME[,NAME…] or all (docs/SCENES.md#terms)
+    std::string checkpoint;         ///< --checkpoint FILE: finished tiles kept there (docs/CLI.md)
     std::optional<std::string> region;  ///< --region X0,Y0,X1,Y1 as typed; unset: whole image
     std::optional<std::string> frames;  ///< --frames A:B or all as typed; unset: frame 0 only
     bool quiet = false;

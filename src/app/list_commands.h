@@ -9,7 +9,7 @@ namespace luz {
 void print_scenes(std::FILE* out);
 
 /// A table of the presets: name, alias, ka, kd, ks, n, reflection, transparency, ior,
-/// reflectance (constant or schlick, SPEC §1.4).
+/// reflectance (constant or schlick, docs/SCENES.md#reflectance).
 void print_materials(std::FILE* out);
 
 }  // namespace luz

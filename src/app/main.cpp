@@ -1,6 +1,6 @@
 // The `luz` command. Under mpirun (Open MPI sets OMPI_COMM_WORLD_SIZE), `luz render` becomes
-// `luz-mpi render` from the same folder (SPEC §3.1), so that this binary never links MPI and
-// starts as fast as ever.
+// `luz-mpi render` from the same folder (docs/DISTRIBUTED.md), so that this binary never links MPI
+// and starts as fast as ever.
 #include <unistd.h>
 
 #include <cerrno>

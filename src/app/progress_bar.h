@@ -1,4 +1,4 @@
-// ProgressBar: the render's progress on standard error, "[#####-----]  42%  ETA 3s" (SPEC §3),
+// ProgressBar: the render's progress on standard error, "[#####-----]  42%  ETA 3s" (docs/CLI.md),
 // drawn only on a terminal; safe to update from any worker thread.
 #pragma once
 

@@ -1,4 +1,4 @@
-// `luz render`: load, check, render and write one scene (SPEC §3).
+// `luz render`: load, check, render and write one scene (docs/CLI.md).
 #pragma once
 
 #include <functional>

@@ -1,4 +1,4 @@
-// `luz web [-o DIR]`: writes DIR/luz.html, the self-contained page of SPEC §6 (luz compiled to
+// `luz web [-o DIR]`: writes DIR/luz.html, the self-contained page of docs/WEB.md (luz compiled to
 // WebAssembly, web/), embedded in this binary when the build had Emscripten.
 #pragma once
 

@@ -19,8 +19,8 @@ namespace luz {
 
 class Checkpoint;
 
-/// `--checkpoint FILE` (SPEC §3): the tiles a ray-traced render finished, kept in a file so that
-/// an interrupted render continues where it stopped. Reads the file when it exists; throws
+/// `--checkpoint FILE` (docs/CLI.md): the tiles a ray-traced render finished, kept in a file so
+/// that an interrupted render continues where it stopped. Reads the file when it exists; throws
 /// SceneError when it belongs to another render (`key`: the scene and options, as text).
 class CheckpointFile {
   public:

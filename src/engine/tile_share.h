@@ -1,7 +1,7 @@
-// TileShare: how a render's work items (tiles) are shared with other processes (SPEC §3.1,
-// `mpirun -np N luz render`). The renderer asks it for the items to render here and gives it
-// their bytes; at the end of a pass it hands back the bytes of the items rendered elsewhere.
-// Implemented over MPI in src/mpi/; a render without one renders every item itself.
+// TileShare: how a render's work items (tiles) are shared with other processes
+// (docs/DISTRIBUTED.md, `mpirun -np N luz render`). The renderer asks it for the items to render
+// here and gives it their bytes; at the end of a pass it hands back the bytes of the items rendered
+// elsewhere. Implemented over MPI in src/mpi/; a render without one renders every item itself.
 #pragma once
 
 #include <atomic>

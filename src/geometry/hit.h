@@ -30,9 +30,9 @@ struct Hit {
 
 /// Surface data at a hit: world position, unit outward shading normal (object normal by the
 /// inverse transpose, normalised), unit outward geometric normal. For triangles both are the
-/// winding normal (v1 − v0) × (v2 − v0); two-sided shading flips them later (SPEC §1.3). For
-/// mesh triangles (Hit::part = triangle), N is the interpolated vertex normal of a smooth mesh
-/// and Ng the face normal.
+/// winding normal (v1 − v0) × (v2 − v0); two-sided shading flips them later
+/// (docs/SCENES.md#geometry). For mesh triangles (Hit::part = triangle), N is the interpolated
+/// vertex normal of a smooth mesh and Ng the face normal.
 struct SurfacePoint {
     Vec3 P, N, Ng;
 };

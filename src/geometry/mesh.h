@@ -1,5 +1,6 @@
-// Mesh: a triangle mesh in world space (SPEC §2 `mesh`) — shared vertex and index arrays, a
-// triangle is an index; built once from the loaded OBJ data with the object's transform applied.
+// Mesh: a triangle mesh in world space (docs/SCENES.md#scene-files `mesh`) — shared vertex and
+// index arrays, a triangle is an index; built once from the loaded OBJ data with the object's
+// transform applied.
 #pragma once
 
 #include <cstdint>

@@ -75,9 +75,9 @@ void nearest_hits_scattered(const BuiltScene& scene, const Ray* rays, int n, flo
                             float t_max, Hit* hits, bool* found, IntersectCounters& counters);
 
 /// The product of `transparency` over every surface r crosses in (t_min, t_max): 1 if none,
-/// 0 as soon as an opaque one is met (SPEC §1: vis_j; a closed glass shape counts twice). The
-/// crossings are counted per material and multiplied in material order, so the result does
-/// not depend on the order they are found in (up to 32 transparent materials per segment).
+/// 0 as soon as an opaque one is met (docs/SCENES.md#models: vis_j; a closed glass shape counts
+/// twice). The crossings are counted per material and multiplied in material order, so the result
+/// does not depend on the order they are found in (up to 32 transparent materials per segment).
 /// Only the scene's shapes count: light spheres never block.
 float transmittance(const BuiltScene& scene, const Materials& materials, const Ray& r, float t_min,
                     float t_max, IntersectCounters& counters);

@@ -1,5 +1,5 @@
-// Liveness across luz-mpi's processes (SPEC §3.1): each process's thread sends a small message
-// now and then on a communicator of its own; a process silent for LUZ_MPI_TIMEOUT seconds
+// Liveness across luz-mpi's processes (docs/DISTRIBUTED.md): each process's thread sends a small
+// message now and then on a communicator of its own; a process silent for LUZ_MPI_TIMEOUT seconds
 // (stopped by SIGSTOP, a debugger, a machine that no longer answers) ends the run with a
 // message naming it, instead of keeping every other process waiting for ever.
 #pragma once

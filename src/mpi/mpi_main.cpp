@@ -1,4 +1,4 @@
-// luz-mpi: `luz render` across the processes of `mpirun -np N` (SPEC §3.1). `luz` runs it
+// luz-mpi: `luz render` across the processes of `mpirun -np N` (docs/DISTRIBUTED.md). `luz` runs it
 // when started by mpirun (app/main.cpp). Rank 0 runs the ordinary command line, reading the
 // scene and its files as ever while keeping a copy (a file observer); before its first frame it
 // sends them to every other process (scene_bundle.h); each frame's tiles are then shared

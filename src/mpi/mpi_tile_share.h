@@ -1,5 +1,5 @@
-// TileShare over MPI (SPEC §3.1), like OSPRay's MPI offload mode: each process starts with a
-// few items of the pass given out in advance, then asks rank 0 for more before it runs out;
+// TileShare over MPI (docs/DISTRIBUTED.md), like OSPRay's MPI offload mode: each process starts
+// with a few items of the pass given out in advance, then asks rank 0 for more before it runs out;
 // rank 0 renders too, answers the requests between two of its tiles (no thread of its own to
 // wake) and gathers every item's bytes.
 #pragma once

@@ -1,5 +1,5 @@
-// What rank 0 sends every other process before rendering (SPEC §3.1: only rank 0 reads the
-// scene and its files): whether to render at all, and the files the scene loader read.
+// What rank 0 sends every other process before rendering (docs/DISTRIBUTED.md: only rank 0 reads
+// the scene and its files): whether to render at all, and the files the scene loader read.
 #pragma once
 
 #include <map>

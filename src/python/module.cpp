@@ -1,5 +1,5 @@
-// The extension module luz._luz (re-exported by the package luz, luz/__init__.py): SPEC §5 over
-// the public API (include/luz/), with no loader, limit or formula of its own.
+// The extension module luz._luz (re-exported by the package luz, luz/__init__.py): docs/PYTHON.md
+// over the public API (include/luz/), with no loader, limit or formula of its own.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -160,7 +160,7 @@ threshold: the colour difference that splits a pixel in adaptive antialiasing
     Each of these means what the `luz render` option of that name means; None keeps the
     scene's value.
 threads: worker threads; 0 (default) uses every core. The image does not depend on it.
-aov: per-term images to make too (SPEC 1.5): names among ambient, diffuse, specular,
+aov: per-term images to make too (docs/SCENES.md#terms): names among ambient, diffuse, specular,
     reflected, refracted, emitted, shadow, depth, normal, tests, or "all"; a list or a
     comma-separated str. They are in Frame.aov.
 set: a dict {PATH: value} applied like --set, before the options above.

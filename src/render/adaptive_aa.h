@@ -1,5 +1,6 @@
-// Adaptive antialiasing (SPEC §1.2): a sample at each pixel corner, pixels whose corners differ
-// split into four recursively (refine_tile), and the mask of what was refined (--aa-mask).
+// Adaptive antialiasing (docs/SCENES.md#antialiasing): a sample at each pixel corner, pixels whose
+// corners differ split into four recursively (refine_tile), and the mask of what was refined
+// (--aa-mask).
 #pragma once
 
 #include <algorithm>
@@ -15,9 +16,9 @@
 
 namespace luz {
 
-/// Adaptive sampling (SPEC §1.2): corner samples shared by neighbouring pixels, a pixel whose
-/// corners differ by more than `threshold` split into 4, recursively, up to `max_level` times.
-/// Sub-corners lie on the pixel's finest lattice: (i + k/S, j + l/S), S = 2^max_level.
+/// Adaptive sampling (docs/SCENES.md#antialiasing): corner samples shared by neighbouring pixels, a
+/// pixel whose corners differ by more than `threshold` split into 4, recursively, up to `max_level`
+/// times. Sub-corners lie on the pixel's finest lattice: (i + k/S, j + l/S), S = 2^max_level.
 struct AdaptiveSpec {
     float threshold = 0.1f;
     int max_level = 3;

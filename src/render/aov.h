@@ -1,5 +1,5 @@
-// The per-term images of SPEC §1.5 (AOVs): their names, which of them a render fills, and the
-// terms of one sample that the samplers filter like the colour.
+// The per-term images of docs/SCENES.md#terms (AOVs): their names, which of them a render fills,
+// and the terms of one sample that the samplers filter like the colour.
 #pragma once
 
 #include <array>
@@ -14,9 +14,9 @@
 
 namespace luz {
 
-/// One sample's terms (SPEC §1.5), computed at its primary hit by the pipeline that made its
-/// colour: colour = ambient + diffuse + specular + reflected + refracted + emitted.
-/// The samplers combine samples of this type with the same weights as the colour.
+/// One sample's terms (docs/SCENES.md#terms), computed at its primary hit by the pipeline that made
+/// its colour: colour = ambient + diffuse + specular + reflected + refracted + emitted. The
+/// samplers combine samples of this type with the same weights as the colour.
 struct TermSample {
     Rgb colour;
     Rgb ambient, diffuse, specular, reflected, refracted, emitted, shadow;

@@ -1,4 +1,4 @@
-// --checkpoint FILE (SPEC §3): the finished work items (tiles) of a long render kept in a file,
+// --checkpoint FILE (docs/CLI.md): the finished work items (tiles) of a long render kept in a file,
 // written atomically now and then and when interrupted, so that a rerun with the same scene and
 // options continues where it stopped and ends with the bits of an uninterrupted render.
 #pragma once

@@ -1,5 +1,5 @@
-// Grid antialiasing (SPEC §1.2): s² samples a pixel at fixed or jittered positions, combined by
-// the box or the tent filter (filter_tile).
+// Grid antialiasing (docs/SCENES.md#antialiasing): s² samples a pixel at fixed or jittered
+// positions, combined by the box or the tent filter (filter_tile).
 #pragma once
 
 #include <algorithm>
@@ -36,11 +36,11 @@ inline float jitter_offset(uint64_t pixel, uint32_t k, uint32_t axis) {
 /// Tent weight of one axis: max(0, 1 − |d|), d in pixels from the pixel's centre.
 inline float tent1(float d) { return std::max(0.0f, 1.0f - std::fabs(d)); }
 
-/// Tent weight of a sample (dx, dy) pixels from a pixel's centre (SPEC §1.2).
+/// Tent weight of a sample (dx, dy) pixels from a pixel's centre (docs/SCENES.md#antialiasing).
 inline float tent_weight(float dx, float dy) { return tent1(dx) * tent1(dy); }
 
-/// Grid sampling (SPEC §1.2): s² samples per pixel, sample (a, b) of pixel (i, j) at
-/// (i + (a+0.5)/s, j + (b+0.5)/s), or with jitter uniformly inside its cell.
+/// Grid sampling (docs/SCENES.md#antialiasing): s² samples per pixel, sample (a, b) of pixel (i, j)
+/// at (i + (a+0.5)/s, j + (b+0.5)/s), or with jitter uniformly inside its cell.
 struct GridSpec {
     int s = 1;
     AaFilter filter = AaFilter::box;

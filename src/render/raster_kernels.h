@@ -18,7 +18,8 @@ inline int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }
 /// Rasterizes triangle `r` into the fragments of lattice `lat` (top-left fill rule, nearest
 /// depth kept, ties to the fragment already there), one point at a time with 64-bit edge
 /// functions. `clip_bary`: the barycentrics of a clipped piece's vertices in the original
-/// triangle, or null. `tests` (or null) counts each point's depth tests (SPEC §1.5 `tests`).
+/// triangle, or null. `tests` (or null) counts each point's depth tests (docs/SCENES.md#terms
+/// `tests`).
 void rasterize_triangle_reference(bool perspective, const RasterTriangle& r,
                                   const std::array<Vec3, 3>* clip_bary, const Lattice& lat,
                                   Fragment* frags, uint32_t* tests);

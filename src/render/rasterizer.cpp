@@ -100,7 +100,7 @@ bool setup(const Binning& f, const ClipVertex* v, uint32_t triangle, RasterTrian
     const double sy = 0.5 * f.height * static_cast<double>(f.unit);
     for (int i = 0; i < 3; ++i) {
         const float iw = 1.0f / v[i].w;
-        // px = (x+1)·W/2, py = (1−y)·H/2 (SPEC §1.3), in fixed point.
+        // px = (x+1)·W/2, py = (1−y)·H/2 (docs/SCENES.md#geometry), in fixed point.
         r.x[i] = static_cast<int32_t>(round_half_away((double{v[i].x} * iw + 1.0) * sx));
         r.y[i] = static_cast<int32_t>(round_half_away((1.0 - double{v[i].y} * iw) * sy));
         r.depth[i] = v[i].depth;

@@ -45,8 +45,9 @@ void render_into(const BuiltScene& scene, const Settings& settings, const Render
     };
     std::vector<TraceCounters> counters;
     SamplerCounts counts;
-    constexpr bool kWhole = std::is_same_v<Out, Image>;     // ImageRows: colour only
-    if (kWhole && control.terms && control.terms->any()) {  // the colour and its terms (§1.5)
+    constexpr bool kWhole = std::is_same_v<Out, Image>;  // ImageRows: colour only
+    if (kWhole && control.terms &&
+        control.terms->any()) {  // the colour and its terms (docs/SCENES.md#terms)
         // One sample at a time: each sample's `tests` term counts its own tests.
         TermOut term_out{image_of(out), *control.terms};
         counts = sample_image(

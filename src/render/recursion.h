@@ -1,6 +1,7 @@
-// The rules of the ray tree (SPEC §1.1, §2), written once for every engine: where a secondary or
-// shadow ray starts, where reflected and refracted rays go, which secondary rays are traced
-// (max_depth, min_weight) and how a child's colour is weighted into its parent's (A).
+// The rules of the ray tree (docs/SCENES.md#ray-tracing, #scene-files), written once for every
+// engine: where a secondary or shadow ray starts, where reflected and refracted rays go, which
+// secondary rays are traced (max_depth, min_weight) and how a child's colour is weighted into its
+// parent's (A).
 #pragma once
 
 #include <cmath>
@@ -14,12 +15,13 @@
 
 namespace luz {
 
-/// Offset of secondary and shadow ray origins along the geometric normal (SPEC §1.1: ≤ 1e-4).
+/// Offset of secondary and shadow ray origins along the geometric normal
+/// (docs/SCENES.md#ray-tracing: ≤ 1e-4).
 inline constexpr float kRayEpsilon = 1e-4f;
 
 /// A ray leaving surface point P in direction `dir`, its origin moved by kRayEpsilon along the
-/// geometric normal Ng to the side the ray leaves towards (SPEC §1.1), so that a surface never
-/// shadows or reflects itself by rounding.
+/// geometric normal Ng to the side the ray leaves towards (docs/SCENES.md#ray-tracing), so that a
+/// surface never shadows or reflects itself by rounding.
 inline Ray spawn_ray(const Vec3& P, const Vec3& Ng, const Vec3& dir) {
     return {P + Ng * (dot(dir, Ng) > 0 ? kRayEpsilon : -kRayEpsilon), dir};
 }
@@ -33,9 +35,9 @@ inline Vec3 reflect(const Vec3& D, const Vec3& N) { return D - N * (2 * dot(D, N
 bool refract(const Vec3& D, const Vec3& N, float n1, float n2, Vec3& T);
 
 /// The directions of the secondary rays leaving a hit `sp` of a ray in unit direction D
-/// (SPEC §1.1). `reflected`: the mirror direction about the normal facing D (two-sided).
-/// `refracted` (only when m.transparency > 0): by Snell's law, from the medium around (1.0)
-/// into m.ior when the ray enters (D against Ng), from m.ior back to 1.0 when it leaves; on
+/// (docs/SCENES.md#ray-tracing). `reflected`: the mirror direction about the normal facing D
+/// (two-sided). `refracted` (only when m.transparency > 0): by Snell's law, from the medium around
+/// (1.0) into m.ior when the ray enters (D against Ng), from m.ior back to 1.0 when it leaves; on
 /// total internal reflection (`tir`) the mirror direction.
 struct Bounce {
     Vec3 reflected, refracted;
@@ -43,7 +45,8 @@ struct Bounce {
 };
 Bounce bounce(const Vec3& D, const SurfacePoint& sp, const Material& m);
 
-/// Which secondary rays are traced and how their colours come back (SPEC §1.1, §2).
+/// Which secondary rays are traced and how their colours come back (docs/SCENES.md#ray-tracing,
+/// #scene-files).
 struct TreeRules {
     int max_depth = 0;  ///< 0: no secondary rays (raycast, or raytrace with max_depth 0)
     float min_weight = 0;

@@ -60,7 +60,7 @@ Image render(const BuiltScene& scene, const Settings& settings, const RenderCont
                     std::fill(row, row + img.width, img.background);
                 });
             }
-            stats.triangles += scene.mesh_triangles;  // raytrace: triangles in meshes (SPEC §3)
+            stats.triangles += scene.mesh_triangles;  // raytrace: triangles in meshes (docs/CLI.md)
             break;
     }
     if (settings.render.pipeline != Pipeline::zbuffer) set_bvh_stats(scene, stats);

@@ -26,7 +26,8 @@ struct RenderControl {
     /// When set, receives which pixels adaptive antialiasing refined and how deeply
     /// (render/sampler.h; no pixel is refined in the other modes).
     AaMask* aa_mask = nullptr;
-    /// When set, receives the per-term images it holds (SPEC §1.5), each the image's size.
+    /// When set, receives the per-term images it holds (docs/SCENES.md#terms), each the image's
+    /// size.
     const TermPlanes* terms = nullptr;
     /// When set, called (from a render thread, any thread) with a warning about the render
     /// itself, each kind at most once per render: an exploding ray tree (render/ray_render.cpp),
@@ -35,7 +36,7 @@ struct RenderControl {
     /// When set, the ray pipelines keep finished tiles in it and skip those it already holds
     /// (render/checkpoint.h); the zbuffer renders every tile.
     Checkpoint* checkpoint = nullptr;
-    /// When not empty, only the tiles that hold these pixels are rendered (--region, SPEC §3):
+    /// When not empty, only the tiles that hold these pixels are rendered (--region, docs/CLI.md):
     /// its pixels are then those of the whole render, bit for bit; the image keeps the whole
     /// size and its other pixels are left as they were (the ray pipelines: unwritten).
     PixelRect region;

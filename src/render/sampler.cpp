@@ -1,5 +1,5 @@
-// Antialiasing (SPEC §1.2): grid filters (box, tent), the adaptive sub-corner cache, and the
-// image that shows which pixels adaptive sampling refined.
+// Antialiasing (docs/SCENES.md#antialiasing): grid filters (box, tent), the adaptive sub-corner
+// cache, and the image that shows which pixels adaptive sampling refined.
 #include "render/sampler.h"
 
 #include <limits>

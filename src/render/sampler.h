@@ -1,7 +1,8 @@
-// Antialiasing of SPEC §1.2 — none, grid (box or tent filter, optional jitter) and adaptive —
-// independent of how a colour is computed: the samplers ask for "the colour at pixel-space point
-// (x, y)" and combine the answers. The ray pipelines use sample_image(); the zbuffer uses the
-// same positions, filter (filter_tile) and refinement (refine_tile) with its own rasterizer.
+// Antialiasing of docs/SCENES.md#antialiasing — none, grid (box or tent filter, optional jitter)
+// and adaptive — independent of how a colour is computed: the samplers ask for "the colour at
+// pixel-space point (x, y)" and combine the answers. The ray pipelines use sample_image(); the
+// zbuffer uses the same positions, filter (filter_tile) and refinement (refine_tile) with its own
+// rasterizer.
 #pragma once
 #pragma once
 

@@ -1,5 +1,6 @@
 // TermRecorder: the observer of trace() (render/whitted.h) that keeps a camera ray's terms
-// (SPEC §1.5) as they are computed at its primary hit; the rays below it are not observed.
+// (docs/SCENES.md#terms) as they are computed at its primary hit; the rays below it are not
+// observed.
 #pragma once
 
 #include <span>

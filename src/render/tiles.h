@@ -44,7 +44,7 @@ uint64_t work_of(const Counters&) {
 }
 
 /// The primary rays a work item's counters have counted (render/whitted.h overloads it): how a
-/// render shared among processes reports each one's share (SPEC §3.1).
+/// render shared among processes reports each one's share (docs/DISTRIBUTED.md).
 template <class Counters>
 uint64_t primary_rays_of(const Counters&) {
     return 0;

@@ -1,4 +1,5 @@
-// trace(ray, depth) exactly as SPEC §1.1: the lecture's algorithm, the reference of every engine.
+// trace(ray, depth) exactly as docs/SCENES.md#ray-tracing: the lecture's algorithm, the reference
+// of every engine.
 #include "render/whitted.h"
 
 #include <chrono>

@@ -1,6 +1,6 @@
-// The lecture's ray tracer (SPEC §1.1): trace(ray, depth) with shadow rays, mirror reflection
-// and refraction by Snell's law, in whitted.cpp on one screen. It is the reference: the batch
-// engine (render/batch_tracer.h) gives its bits. raycast is the same code with depth 0 and no
+// The lecture's ray tracer (docs/SCENES.md#ray-tracing): trace(ray, depth) with shadow rays, mirror
+// reflection and refraction by Snell's law, in whitted.cpp on one screen. It is the reference: the
+// batch engine (render/batch_tracer.h) gives its bits. raycast is the same code with depth 0 and no
 // shadow rays. What the viewer's ray tree and the per-term images need, they get by observing
 // trace() (an Observer: NoObserver, RayTreeRecorder in ray_tree.h, TermRecorder in aov.h).
 #pragma once
@@ -63,8 +63,8 @@ class Whitted {
     Whitted(const BuiltScene& scene, const Settings& settings, bool full,
             const std::atomic<bool>* cancel = nullptr);
 
-    /// The colour seen along `ray` at ray-tree depth `depth` (SPEC §1.1); `weight` is the
-    /// product of the coefficients that scale it (1 for a camera ray, for min_weight).
+    /// The colour seen along `ray` at ray-tree depth `depth` (docs/SCENES.md#ray-tracing); `weight`
+    /// is the product of the coefficients that scale it (1 for a camera ray, for min_weight).
     /// `distance` receives the distance to what the ray hit (infinity on a miss).
     template <class Observer = NoObserver>
     Rgb trace(const Ray& ray, int depth, float weight, TraceCounters& counters, float& distance,
@@ -77,7 +77,7 @@ class Whitted {
     /// The colour at pixel-space point (px, py): one camera ray. One call in kTimedSampleEvery
     /// (counted in `counters`) is timed (TraceCounters::timed_ns, tests.query_ns).
     Rgb sample(float px, float py, TraceCounters& counters) const;
-    /// The same sample with its terms (SPEC §1.5), observed at the primary hit.
+    /// The same sample with its terms (docs/SCENES.md#terms), observed at the primary hit.
     TermSample sample_terms(float px, float py, TraceCounters& counters) const;
 
     /// The nearest visible light sphere along ray within (0, t_max), or −1; t_max becomes its

@@ -38,7 +38,7 @@ void shade_tile(const ZbufferFrame& f, int x0, int y0, int w, int h, const Fragm
     }
 }
 
-/// The same with the terms (SPEC §1.5), `tests` holding each pixel's depth tests.
+/// The same with the terms (docs/SCENES.md#terms), `tests` holding each pixel's depth tests.
 void shade_tile(const ZbufferFrame& f, int x0, int y0, int w, int h, const Fragment* frags,
                 const uint32_t* tests, TermOut& out, RenderStats& stats) {
     const Lighting lighting = lighting_of(f.settings);
@@ -219,7 +219,7 @@ ZbufferGeometry prepare_zbuffer(const BuiltScene& scene, const Settings& setting
                       g.triangle_material.end() - static_cast<std::ptrdiff_t>(n));
         }
     }
-    // Visible light spheres, drawn in the light's clamped colour (SPEC §1.1).
+    // Visible light spheres, drawn in the light's clamped colour (docs/SCENES.md#ray-tracing).
     for (size_t j = 0; j < settings.lights.size(); ++j) {
         const Light& light = settings.lights[j];
         if (light.radius <= 0) continue;
@@ -241,7 +241,7 @@ void render_zbuffer(const BuiltScene& scene, const Settings& settings,
     const Camera camera = Camera::from(settings.camera, img.width, img.height);
     if (out.width != img.width || out.height != img.height) out = Image(img.width, img.height);
 
-    // Antialiasing (SPEC §1.2) sets the raster's fixed-point unit and its tiles.
+    // Antialiasing (docs/SCENES.md#antialiasing) sets the raster's fixed-point unit and its tiles.
     const AntialiasDesc& aa = settings.render.antialias;
     const GridSpec grid = [&] {
         GridSpec g = GridSpec::from(aa, img.width, img.height);

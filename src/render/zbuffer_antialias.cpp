@@ -1,5 +1,5 @@
-// Antialiasing in the zbuffer (SPEC §1.2): the same sample positions, filters and refinement as
-// the ray pipelines, on lattices of the rasterizer's fixed-point raster.
+// Antialiasing in the zbuffer (docs/SCENES.md#antialiasing): the same sample positions, filters and
+// refinement as the ray pipelines, on lattices of the rasterizer's fixed-point raster.
 #include "render/zbuffer_antialias.h"
 
 #include <algorithm>

@@ -1,5 +1,6 @@
-// Antialiasing in the zbuffer (SPEC §1.2): the raster layout each mode needs, the grid lattice
-// per tile, and the adaptive corner and refinement passes per tile (docs/ARCHITECTURE.md).
+// Antialiasing in the zbuffer (docs/SCENES.md#antialiasing): the raster layout each mode needs, the
+// grid lattice per tile, and the adaptive corner and refinement passes per tile
+// (docs/ARCHITECTURE.md).
 #pragma once
 
 #include "image/image.h"

@@ -1,5 +1,5 @@
 // Where the zbuffer's fragments meet shade(): the frame its passes share and shade_fragment(),
-// which turns one rasterized fragment into a colour (SPEC §1.1).
+// which turns one rasterized fragment into a colour (docs/SCENES.md#ray-tracing).
 #pragma once
 
 #include <cstddef>
@@ -225,8 +225,8 @@ inline void shade_fragments_lanes(const ZbufferFrame& f, const Lighting& lightin
     }
 }
 
-/// The same fragment's colour with its terms (SPEC §1.5; `tests`: the point's depth tests).
-/// Its colour has the bits shade_fragment() gives.
+/// The same fragment's colour with its terms (docs/SCENES.md#terms; `tests`: the point's depth
+/// tests). Its colour has the bits shade_fragment() gives.
 TermSample shade_fragment_terms(const ZbufferFrame& f, const Lighting& lighting,
                                 const Fragment& frag, uint32_t tests, RenderStats& stats);
 

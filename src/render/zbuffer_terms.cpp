@@ -1,5 +1,5 @@
-// The zbuffer's per-term samples (SPEC §1.5): a fragment's colour split into the terms shade()
-// computed — ambient, diffuse, specular, emitted — with its depth, normal and depth tests.
+// The zbuffer's per-term samples (docs/SCENES.md#terms): a fragment's colour split into the terms
+// shade() computed — ambient, diffuse, specular, emitted — with its depth, normal and depth tests.
 #include <cmath>
 #include <limits>
 #include <vector>

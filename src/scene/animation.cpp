@@ -1,4 +1,5 @@
-// A frame of an animation: keyframes interpolated into overrides, then the orbit (SPEC §2).
+// A frame of an animation: keyframes interpolated into overrides, then the orbit
+// (docs/SCENES.md#scene-files).
 #include "scene/animation.h"
 
 #include <cmath>

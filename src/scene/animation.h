@@ -1,5 +1,6 @@
-// A frame of an animation (SPEC §2 `animation`): the keyframed values at frame f as --set-style
-// overrides of the scene document, and the camera's turntable orbit applied after them.
+// A frame of an animation (docs/SCENES.md#scene-files `animation`): the keyframed values at frame f
+// as --set-style overrides of the scene document, and the camera's turntable orbit applied after
+// them.
 #pragma once
 
 #include <string>

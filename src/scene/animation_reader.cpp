@@ -1,4 +1,5 @@
-// The `animation` key (SPEC §2): frames, fps, keys {PATH: [[frame, value], …]}, orbit.
+// The `animation` key (docs/SCENES.md#scene-files): frames, fps, keys {PATH: [[frame, value], …]},
+// orbit.
 #include "scene/animation_reader.h"
 
 #include "scene/json_readers.h"

@@ -1,4 +1,5 @@
-// Reads the `animation` key (SPEC §2) into an AnimationDesc; errors name its key path.
+// Reads the `animation` key (docs/SCENES.md#scene-files) into an AnimationDesc; errors name its key
+// path.
 #pragma once
 
 #include "scene/animation_desc.h"

@@ -1,4 +1,4 @@
-// Camera: the basis and ray generation of SPEC §1.3, shared by every pipeline.
+// Camera: the basis and ray generation of docs/SCENES.md#geometry, shared by every pipeline.
 #pragma once
 
 #include <cmath>
@@ -43,7 +43,7 @@ struct Camera {
     float ndc_x(float px) const { return 2.0f * px / static_cast<float>(width) - 1.0f; }
     float ndc_y(float py) const { return 1.0f - 2.0f * py / static_cast<float>(height); }
 
-    /// The primary ray through pixel-space point (px, py) (SPEC §1.3).
+    /// The primary ray through pixel-space point (px, py) (docs/SCENES.md#geometry).
     Ray ray(float px, float py) const {
         const float x = ndc_x(px), y = ndc_y(py);
         if (projection == Projection::orthographic) {

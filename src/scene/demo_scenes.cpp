@@ -6,8 +6,8 @@ namespace luz {
 namespace {
 
 // The practical assignment: sphere, cube, cylinder, cone and torus on a floor, orthographic,
-// zbuffer, phong. Exposure by hand (SPEC §1 model 2, K = 1): the key light is ~10–11 units
-// from the shapes, so Il/(d+K) ≈ 10/11 ≈ 0.9; the fill gives ≈ 4/12 ≈ 0.33. A surface facing
+// zbuffer, phong. Exposure by hand (docs/SCENES.md#models model 2, K = 1): the key light is ~10–11
+// units from the shapes, so Il/(d+K) ≈ 10/11 ≈ 0.9; the fill gives ≈ 4/12 ≈ 0.33. A surface facing
 // the key gets about 0.9·Kd + Ka (0.75 → 0.79), the tops of the shapes ≈ 0.65·Kd + Ka, so the
 // shapes average ≈ 0.3 and only specular highlights reach 1.
 constexpr std::string_view kPrimitives = R"json({
@@ -73,7 +73,7 @@ constexpr std::string_view kWhitted = R"json({
 // The eleven presets side by side, as spheres over a grey floor, ray traced so the metals
 // reflect and the water and glass refract: the picture behind `luz materials`. The lecture's
 // eight in two rows; behind them, between their spheres, the three metals whose w(i, λ) is
-// Schlick's curve (SPEC §1.4).
+// Schlick's curve (docs/SCENES.md#reflectance).
 constexpr std::string_view kMaterials = R"json({
   "image":  { "width": 800, "height": 400, "background": [0.3, 0.4, 0.55] },
   "camera": { "projection": "perspective", "position": [0, 5, 8.5], "look_at": [0, 0.4, -0.6],

@@ -1,4 +1,5 @@
-// The table of numeric scene keys and their ranges (SPEC §2): the one place they are written.
+// The table of numeric scene keys and their ranges (docs/SCENES.md#scene-files): the one place they
+// are written.
 #include "scene/limits.h"
 
 #include <cmath>

@@ -1,6 +1,6 @@
-// The allowed range of every numeric scene key (SPEC §2), in one table (limits.cpp; shape keys
-// from shape_desc.h): the loader validates through it and the viewer's sliders take their ranges
-// from it.
+// The allowed range of every numeric scene key (docs/SCENES.md#scene-files), in one table
+// (limits.cpp; shape keys from shape_desc.h): the loader validates through it and the viewer's
+// sliders take their ranges from it.
 #pragma once
 
 #include <limits>

@@ -13,8 +13,8 @@ struct SurfaceConstants {
     Rgb ka, kd;
 };
 
-/// The constants at world point P with outward geometric normal Ng (SPEC §2 `checker`):
-/// P is moved by 0.001·size against Ng before choosing the cell.
+/// The constants at world point P with outward geometric normal Ng (docs/SCENES.md#scene-files
+/// `checker`): P is moved by 0.001·size against Ng before choosing the cell.
 inline SurfaceConstants surface_constants(const Material& m, const Vec3& P, const Vec3& Ng) {
     if (!m.checker) return {m.ka, m.kd};
     const Checker& c = *m.checker;

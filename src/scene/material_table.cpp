@@ -1,4 +1,5 @@
-// Reading materials (SPEC §2): named, preset, inline, with checker; see material_table.h.
+// Reading materials (docs/SCENES.md#scene-files): named, preset, inline, with checker; see
+// material_table.h.
 #include "scene/material_table.h"
 
 #include "scene/json_readers.h"
@@ -58,7 +59,7 @@ Material read_material(const Json& j, const std::string& path) {
 
 MaterialTable::MaterialTable(std::vector<Material>& list) : list_(list) {
     list_.clear();
-    Material def;  // SPEC §1: the slide's Ka = 0.1, Kd = 0.45
+    Material def;  // docs/SCENES.md#models: the slide's Ka = 0.1, Kd = 0.45
     def.name = "default";
     list_.push_back(def);
     by_name_["default"] = 0;

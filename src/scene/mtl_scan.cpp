@@ -12,7 +12,7 @@ namespace {
 
 using namespace obj_text;
 
-/// Clamps a constant to [0, 1] (SPEC §2), with a warning when it had to.
+/// Clamps a constant to [0, 1] (docs/SCENES.md#scene-files), with a warning when it had to.
 float unit(float x, const char* key, const std::string& file, size_t line,
            std::vector<std::string>& warnings) {
     if (x >= 0 && x <= 1) return x;
@@ -76,10 +76,10 @@ std::vector<Material> scan_mtl(std::string_view text, const std::string& file,
                          unit(v[2], k.c_str(), file, n, warnings)};
         } else if (key == "Ns") {
             read_numbers(tokens, v, 1, 1, file, n, "Ns");
-            m.n = v[0] > 0 ? v[0] : 1.0f;  // SPEC: n > 0
+            m.n = v[0] > 0 ? v[0] : 1.0f;  // docs/SCENES.md: n > 0
         } else if (key == "Ni") {
             read_numbers(tokens, v, 1, 1, file, n, "Ni");
-            m.ior = v[0] >= 1 ? v[0] : 1.0f;  // SPEC: ior ≥ 1
+            m.ior = v[0] >= 1 ? v[0] : 1.0f;  // docs/SCENES.md: ior ≥ 1
         } else if (key == "d") {
             std::string_view first = tokens.rest();
             if (first.substr(0, 5) == "-halo") {

@@ -1,4 +1,4 @@
-// NFF statements (SPEC §2.1) read one by one into the document of the same scene, the
+// NFF statements (docs/SCENES.md#nff) read one by one into the document of the same scene, the
 // polygons of each material gathered into one mesh (see nff_reader.h).
 #include "scene/nff_reader.h"
 
@@ -167,7 +167,7 @@ class NffReader {
         field("up", up, 3, "camera.up");
         field("angle", &angle, 1, "camera.fov_y");
         const std::size_t angle_line = line();
-        field("hither", &hither, 1, nullptr);  // ignored (SPEC §2.1)
+        field("hither", &hither, 1, nullptr);  // ignored (docs/SCENES.md#nff)
         field("resolution", resolution, 2, "image");
         for (float r : resolution) {
             if (!(r >= 1 && r <= 65536 && r == std::floor(r))) {
@@ -356,7 +356,7 @@ class NffReader {
         objects_.push_back(std::move(object));
     }
 
-    /// The settings the file implies (SPEC §2.1), the lights' intensities, the meshes.
+    /// The settings the file implies (docs/SCENES.md#nff), the lights' intensities, the meshes.
     void finish() {
         Json& doc = scene_.doc;
         doc["image"]["background"] = json_vec(background_);

@@ -1,5 +1,5 @@
-// NFF scenes (SPEC §2.1): Eric Haines' Neutral File Format read into the JSON document of the
-// same scene, its polygons as in-memory meshes, and the line each key path came from.
+// NFF scenes (docs/SCENES.md#nff): Eric Haines' Neutral File Format read into the JSON document of
+// the same scene, its polygons as in-memory meshes, and the line each key path came from.
 #pragma once
 
 #include <cstddef>

@@ -1,6 +1,6 @@
 // OBJ/MTL loading: a checking pass over the text (numbers, indices, face sizes → FILE:LINE
 // errors), then tinyobjloader parses, and faces are triangulated (scene/triangulate.h); MTL
-// constants are mapped per SPEC §2.
+// constants are mapped per docs/SCENES.md#scene-files.
 #include "scene/obj_loader.h"
 
 #include <tiny_obj_loader.h>

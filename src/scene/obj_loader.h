@@ -1,6 +1,6 @@
-// Wavefront OBJ and MTL input (SPEC §2 `mesh`): tinyobjloader parses, scene/triangulate.h cuts
-// polygons into triangles, after a
-// light pass of our own that checks every number and index and names FILE:LINE on bad input.
+// Wavefront OBJ and MTL input (docs/SCENES.md#scene-files `mesh`): tinyobjloader parses,
+// scene/triangulate.h cuts polygons into triangles, after a light pass of our own that checks every
+// number and index and names FILE:LINE on bad input.
 #pragma once
 
 #include <string>
@@ -18,9 +18,9 @@ namespace luz {
 /// `usemtl` and `mtllib` are used, other statements ignored. With `with_materials` false the MTL
 /// files are not read and every face has material −1.
 ///
-/// MTL mapping (SPEC §2): Ka, Kd, Ks → ka, kd, ks (clamped to [0, 1]); Ns → n (Ns ≤ 0 → 1);
-/// Ni → ior (below 1 → 1); d → transparency = 1 − d, or Tr → transparency = Tr (d wins);
-/// illum 3–7 → reflection = mean of Ks. Keys a material omits keep the default material's.
+/// MTL mapping (docs/SCENES.md#scene-files): Ka, Kd, Ks → ka, kd, ks (clamped to [0, 1]); Ns → n
+/// (Ns ≤ 0 → 1); Ni → ior (below 1 → 1); d → transparency = 1 − d, or Tr → transparency = Tr (d
+/// wins); illum 3–7 → reflection = mean of Ks. Keys a material omits keep the default material's.
 ///
 /// Throws InputError "FILE:LINE: what" on a malformed number, a non-finite coordinate, a bad
 /// or out-of-range index, or a face with fewer than 3 vertices (MTL errors name the MTL file).

@@ -1,4 +1,5 @@
-// Reading `objects` (SPEC §2) through the shape key table (kShapeKeys in shape_desc.h).
+// Reading `objects` (docs/SCENES.md#scene-files) through the shape key table (kShapeKeys in
+// shape_desc.h).
 #include "scene/object_reader.h"
 
 #include <filesystem>
@@ -13,7 +14,7 @@
 namespace luz::loader {
 namespace {
 
-/// `transform`: p_world = T·Rz·Ry·Rx·S·p (SPEC §2).
+/// `transform`: p_world = T·Rz·Ry·Rx·S·p (docs/SCENES.md#scene-files).
 Affine read_transform(const Json& j, const std::string& path, Vec3& scale, Vec3& rotate,
                       Vec3& translate) {
     const Section s(j, path, {"scale", "rotate", "translate"}, "objects.*.transform");

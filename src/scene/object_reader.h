@@ -14,7 +14,7 @@
 
 namespace luz::loader {
 
-/// The OBJ files of the scene's meshes, each loaded once (SPEC §2 `mesh`).
+/// The OBJ files of the scene's meshes, each loaded once (docs/SCENES.md#scene-files `mesh`).
 class MeshFiles {
   public:
     /// `cache`: meshes read by earlier loads, reused and added to; nullptr: none.

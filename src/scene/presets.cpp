@@ -1,6 +1,7 @@
-// The material presets (SPEC §2), tuned for `phong` with Il/(d+K) ≈ 1: the lecture's eight,
-// diffuse surfaces (cortiça, gesso, …) versus specular ones (polished metal, still water, …),
-// then three metals whose w(i, λ) is Schlick's curve (SPEC §1.4) from a measured Ks.
+// The material presets (docs/SCENES.md#scene-files), tuned for `phong` with Il/(d+K) ≈ 1: the
+// lecture's eight, diffuse surfaces (cortiça, gesso, …) versus specular ones (polished metal, still
+// water, …), then three metals whose w(i, λ) is Schlick's curve (docs/SCENES.md#reflectance) from a
+// measured Ks.
 //
 // The metals' Ks is their reflectance at normal incidence F(0°), linear RGB, from Table 1 of
 // Naty Hoffman, "Background: Physically-Based Shading", SIGGRAPH 2010 course "Physically-Based
@@ -34,9 +35,9 @@ Material make(std::string_view name, Rgb kd, float ka_scale, float ks, float n,
     return m;
 }
 
-/// A polished metal (SPEC §1.4): Ks = F0, its measured reflectance at normal incidence, with
-/// `reflectance: schlick`; Kd a dim F0 (metals have no diffuse body colour, but the classic
-/// model has no coloured environment either: a little Kd gives the metal its tint away from
+/// A polished metal (docs/SCENES.md#reflectance): Ks = F0, its measured reflectance at normal
+/// incidence, with `reflectance: schlick`; Kd a dim F0 (metals have no diffuse body colour, but the
+/// classic model has no coloured environment either: a little Kd gives the metal its tint away from
 /// the highlight), Ka = 0.2·Kd, a tight highlight and a mirror.
 Material make_metal(std::string_view name, Rgb F0) {
     Material m = make(name, F0 * kMetalKdScale, 0.2f, 0.0f, kMetalN, kMetalReflection);

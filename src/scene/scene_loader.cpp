@@ -1,7 +1,8 @@
-// BuiltScene loading (SPEC §2): JSON text (json_text.h) or an NFF file (nff_reader.h, SPEC §2.1)
-// → --set overrides applied to the document (overrides.h) → the sections read and validated
-// (settings_readers.h, material_table.h, object_reader.h) into a SceneDesc with every default
-// filled. Every error names the file (or the override) and the line:column, line or key path.
+// BuiltScene loading (docs/SCENES.md#scene-files): JSON text (json_text.h) or an NFF file
+// (nff_reader.h, docs/SCENES.md#nff) → --set overrides applied to the document (overrides.h) → the
+// sections read and validated (settings_readers.h, material_table.h, object_reader.h) into a
+// SceneDesc with every default filled. Every error names the file (or the override) and the
+// line:column, line or key path.
 #include "scene/scene_loader.h"
 
 #include <malloc.h>
@@ -109,7 +110,7 @@ struct Document {
     std::optional<NffScene> nff;  ///< an NFF file: its lines and meshes (its doc moved to doc)
 };
 
-/// The file's document: its JSON text parsed, or an NFF file read (SPEC §2.1).
+/// The file's document: its JSON text parsed, or an NFF file read (docs/SCENES.md#nff).
 Json read_text(std::string_view text, const std::string& file, const std::string& base_dir,
                std::optional<NffScene>* nff) {
     if (!is_nff_file(file)) return parse_text(text, file);

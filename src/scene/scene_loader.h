@@ -19,12 +19,14 @@ Override parse_set(const std::string& arg);
 SceneText read_scene_text(const std::string& source);
 
 /// Loads `source` — a file path or "demo:NAME" — applies the overrides in order and validates
-/// the result (SPEC §2). Throws InputError naming the file and the line:column or key path.
+/// the result (docs/SCENES.md#scene-files). Throws InputError naming the file and the line:column
+/// or key path.
 SceneDesc load_scene(const std::string& source, const std::vector<Override>& overrides = {});
 
 /// The same from JSON text; `file` labels messages and `base_dir` resolves relative paths. A
-/// scene with an `animation` gives its frame 0, with every frame checked (SPEC §2). Meshes in
-/// `meshes` are reused, and those read are added to it (nullptr: none).
+/// scene with an `animation` gives its frame 0, with every frame checked
+/// (docs/SCENES.md#scene-files). Meshes in `meshes` are reused, and those read are added to it
+/// (nullptr: none).
 SceneDesc parse_scene(std::string_view json_text, const std::string& file,
                       const std::string& base_dir, const std::vector<Override>& overrides = {});
 SceneDesc parse_scene(std::string_view json_text, const std::string& file,

@@ -1,5 +1,6 @@
-// BuiltScene writer: a SceneDesc back to scene JSON (SPEC §2) that the loader reads into the same
-// description — every key written, materials by name, mesh paths relative to the new file.
+// BuiltScene writer: a SceneDesc back to scene JSON (docs/SCENES.md#scene-files) that the loader
+// reads into the same description — every key written, materials by name, mesh paths relative to
+// the new file.
 #pragma once
 
 #include <string>

@@ -37,7 +37,8 @@ void read_camera(const Json* j, CameraDesc& camera) {
         s.number("view_height", camera.view_height);
         s.number("fov_y", camera.fov_y);
     }
-    // The basis of SPEC §1.3 must exist: w = normalize(position − look_at), u = up × w ≠ 0.
+    // The basis of docs/SCENES.md#geometry must exist: w = normalize(position − look_at), u = up ×
+    // w ≠ 0.
     const Vec3 d = camera.position - camera.look_at;
     const float len = length(d);
     if (d == Vec3(0.0f)) {
@@ -115,7 +116,7 @@ void read_render(const Json& j, RenderDesc& render, GeometryDesc& geometry) {
 namespace {
 
 /// Where the implicit light sits: at the camera's upper left, half the viewing distance away:
-/// position + (−u + v)·(0.5·|position − look_at|), with u, v as in SPEC §1.3.
+/// position + (−u + v)·(0.5·|position − look_at|), with u, v as in docs/SCENES.md#geometry.
 Vec3 upper_left_of_camera(const CameraDesc& c) {
     const Vec3 w = normalize(c.position - c.look_at);
     const Vec3 u = normalize(cross(c.up, w));
@@ -144,8 +145,9 @@ void read_lights(const Json* j, SceneDesc& scene) {
     if (scene.lights.empty()) {
         // No lights: one white light at the camera's upper left. Under `lambert` Il = 1 (the
         // slide's value). Under `phong` Il/(d+K) would make Il = 1 very dim, so Il = d + K with
-        // d the light's distance to look_at: Il/(d+K) = 1 at the look-at point (SPEC §1 model 2);
-        // likewise Il = d² under `attenuation: inverse_square` and Il = 1 under `none`.
+        // d the light's distance to look_at: Il/(d+K) = 1 at the look-at point
+        // (docs/SCENES.md#models model 2); likewise Il = d² under `attenuation: inverse_square` and
+        // Il = 1 under `none`.
         Light light;
         light.position = default_position;
         const float d = length(light.position - scene.camera.look_at);

@@ -9,7 +9,7 @@ namespace luz::loader {
 /// `image`: size (at most kMaxPixels in all), background, encoding. Throws KeyError.
 void read_image(const Json& j, ImageDesc& image);
 
-/// `camera` (nullptr when absent), then the check that its basis (SPEC §1.3) exists.
+/// `camera` (nullptr when absent), then the check that its basis (docs/SCENES.md#geometry) exists.
 void read_camera(const Json* j, CameraDesc& camera);
 
 /// `render`, with `antialias`.

@@ -91,7 +91,7 @@ inline bool is_degenerate_triangle(const std::array<Vec3, 3>& p) {
     return !(cross_len > 1e-7 * l1 * l2) || !(cross_len > 0);
 }
 
-/// The checks across one shape's keys, made once its keys are read (SPEC §2).
+/// The checks across one shape's keys, made once its keys are read (docs/SCENES.md#scene-files).
 inline std::optional<ShapeProblem> check_shape(const ObjectDesc& o) {
     switch (o.type) {
         case ShapeType::box:

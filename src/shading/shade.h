@@ -1,4 +1,4 @@
-// shade(): the illumination models of SPEC §1, the only place they are written.
+// shade(): the illumination models of docs/SCENES.md#models, the only place they are written.
 // Both pipelines build a ShadingPoint and call it; it returns the colour and, on request, its
 // terms.
 #pragma once
@@ -25,7 +25,8 @@ struct Lighting {
     Attenuation attenuation = Attenuation::linear;  ///< the law of phong's light term
 };
 
-/// The divisor of phong's light term Il/divisor at distance d (SPEC §1 `attenuation`): d + K
+/// The divisor of phong's light term Il/divisor at distance d (docs/SCENES.md#models
+/// `attenuation`): d + K
 /// (`linear`), 1 (`none`), d² (`inverse_square`). Also the tree attenuation's 1/A (recursion.h).
 inline float distance_divisor(Attenuation law, float d, float K) {
     switch (law) {
@@ -69,15 +70,16 @@ inline float phong_power(float cos_alpha, float n) {
     return std::pow(cos_alpha, n);
 }
 
-/// Evaluates the model at p (SPEC §1). `visibility(j, P, L_j, d_j)` returns vis_j and is only
-/// asked for lights in front of the surface (cosθ_j > 0). Writes the terms when `terms` is set.
+/// Evaluates the model at p (docs/SCENES.md#models). `visibility(j, P, L_j, d_j)` returns vis_j and
+/// is only asked for lights in front of the surface (cosθ_j > 0). Writes the terms when `terms` is
+/// set.
 template <class Visibility>
 inline Rgb shade(const ShadingPoint& p, const Lighting& lighting, Visibility&& visibility,
                  ShadeTerms* terms = nullptr) {
     const Material& m = *p.material;
     const SurfaceConstants c = surface_constants(m, p.P, p.Ng);
 
-    // Two-sided normals (SPEC §1.3): N faces the viewer.
+    // Two-sided normals (docs/SCENES.md#geometry): N faces the viewer.
     Vec3 N = p.N;
     const bool flipped = dot(N, p.S) < 0;
     if (flipped) N = -N;
@@ -115,7 +117,8 @@ inline Rgb shade(const ShadingPoint& p, const Lighting& lighting, Visibility&& v
                         light.intensity *
                         (vis / distance_divisor(lighting.attenuation, d, lighting.K));
                     diffuse = Il_att * c.kd * t.cos_theta;
-                    // w(θ_j)·cosα^n, w = Ks or Schlick's curve (SPEC §1.4); w = 0 needs no power
+                    // w(θ_j)·cosα^n, w = Ks or Schlick's curve (docs/SCENES.md#reflectance); w = 0
+                    // needs no power
                     const Rgb w = specular_reflectance(m, t.cos_theta);
                     if (max_component(w) > 0) {
                         specular = Il_att * w * phong_power(t.cos_alpha, m.n);

@@ -59,7 +59,7 @@ template <class Visibility = AllVisibleLanes>
     using lanes_detail::dot;
     const Lane8f zero = lanes(0.0f), one = lanes(1.0f);
 
-    // Two-sided normals (SPEC §1.3): N faces the viewer.
+    // Two-sided normals (docs/SCENES.md#geometry): N faces the viewer.
     const Lane8i flipped = lane_lt(dot(p.N, p.S), zero);
     Lane8f N[3];
     for (int a = 0; a < 3; ++a) N[a] = lane_select(flipped, -p.N[a], p.N[a]);

@@ -1,4 +1,4 @@
-// luz in a web page (SPEC §6): the C calls the page's worker (web/worker.js) makes, over luz's
+// luz in a web page (docs/WEB.md): the C calls the page's worker (web/worker.js) makes, over luz's
 // public API alone. One scene at a time; strings and pixels returned stay valid until the next
 // call of the same kind.
 #include <emscripten/emscripten.h>
@@ -114,8 +114,9 @@ EMSCRIPTEN_KEEPALIVE const char* luz_limits() {
 }
 
 /// Renders rows [y0, y1) of one progressive pass (resolution 1/divisor, antialiased or not);
-/// term < 0: the image, else that per-term image (SPEC §1.5) as the viewer shows it. Returns
-/// the rows as RGBA bytes, encoded as `luz render` writes PNG, or nullptr with luz_text() set.
+/// term < 0: the image, else that per-term image (docs/SCENES.md#terms) as the viewer shows it.
+/// Returns the rows as RGBA bytes, encoded as `luz render` writes PNG, or nullptr with luz_text()
+/// set.
 EMSCRIPTEN_KEEPALIVE const uint8_t* luz_render(int divisor, int antialiased, int y0, int y1,
                                                int term) {
     Session& s = session();

@@ -295,7 +295,7 @@ TEST_F(AnimationApi, ParseFramesNeedsAnAnimation) {
         } catch (const SceneError& e) {
             EXPECT_EQ(std::string(e.what()), std::string("--frames ") + text + ": " + still +
                                                  " has no animation (add an \"animation\" key, "
-                                                 "SPEC §2)");
+                                                 "docs/SCENES.md#scene-files)");
         }
     }
 }

@@ -1,6 +1,6 @@
-// Per-term images (SPEC §1.5): the colour terms add up to the image in every pipeline and
-// antialiasing mode; each term holds the hand-computed value; asking for terms changes no bit of
-// the image; names are checked.
+// Per-term images (docs/SCENES.md#terms): the colour terms add up to the image in every pipeline
+// and antialiasing mode; each term holds the hand-computed value; asking for terms changes no bit
+// of the image; names are checked.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,5 +1,6 @@
-// The scene key `attenuation` (SPEC §1): phong's light term Il, Il/(d+K) or Il/d² in every
-// pipeline, per-term images that still add up, the ray tree's A per law, and the implicit light.
+// The scene key `attenuation` (docs/SCENES.md#models): phong's light term Il, Il/(d+K) or Il/d² in
+// every pipeline, per-term images that still add up, the ray tree's A per law, and the implicit
+// light.
 #include <gtest/gtest.h>
 
 #include <cmath>

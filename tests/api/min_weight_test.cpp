@@ -1,6 +1,7 @@
-// render.min_weight (SPEC §2, POV-Ray's adc_bailout): a secondary ray whose weight — the product
-// of the reflection and transparency coefficients on its path — is below it is not traced;
-// checked against hand-traced trees. And the recorded ray tree's cap on an exploding pixel.
+// render.min_weight (docs/SCENES.md#scene-files, POV-Ray's adc_bailout): a secondary ray whose
+// weight — the product of the reflection and transparency coefficients on its path — is below it is
+// not traced; checked against hand-traced trees. And the recorded ray tree's cap on an exploding
+// pixel.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -47,7 +48,7 @@ TEST(MinWeight, CutsTheTreeWhereTheWeightFallsBelowIt) {
     // Exactly at the weight: kept (only weights below it are cut).
     EXPECT_TRUE(same_bits(image({{"render.min_weight", "0.25"}}).image,
                           image({{"render.max_depth", "2"}}).image));
-    // 0 traces the whole tree (SPEC §1.1).
+    // 0 traces the whole tree (docs/SCENES.md#ray-tracing).
     const Frame full = image({});
     EXPECT_GT(full.stats.rays_reflection, depth1.stats.rays_reflection * 2);
     EXPECT_TRUE(same_bits(full.image, image({{"render.min_weight", "0"}}).image));

@@ -1,4 +1,4 @@
-// Render regions (--region, SPEC §3): a rectangle's pixels are bit for bit those of the same
+// Render regions (--region, docs/CLI.md): a rectangle's pixels are bit for bit those of the same
 // rectangle of the whole render, in every pipeline and antialiasing mode and filter (the tent
 // reads samples of neighbours outside the rectangle, adaptive the corners of its last row and
 // column), with the per-term images and the refinement mask cut the same way; bad rectangles

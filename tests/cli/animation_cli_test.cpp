@@ -1,7 +1,7 @@
-// `luz render --frames A:B|all` (SPEC §3) of scenes with an `animation` (SPEC §2): one file per
-// frame X.0000.EXT (per-term images and masks too), --stats totals and frames, each frame the
-// scene with its keyed values set, bad ranges and bad animations exit 2 leaving no file, and an
-// interrupted sequence keeps the frames already written.
+// `luz render --frames A:B|all` (docs/CLI.md) of scenes with an `animation`
+// (docs/SCENES.md#scene-files): one file per frame X.0000.EXT (per-term images and masks too),
+// --stats totals and frames, each frame the scene with its keyed values set, bad ranges and bad
+// animations exit 2 leaving no file, and an interrupted sequence keeps the frames already written.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>

@@ -1,5 +1,6 @@
-// Antialiasing on the command line (SPEC §1.2, §3): --aa, --samples, --threshold, the scene's
-// render.antialias keys, --stats' pixels_refined and samples, and --aa-mask FILE.
+// Antialiasing on the command line (docs/SCENES.md#antialiasing, docs/CLI.md): --aa, --samples,
+// --threshold, the scene's render.antialias keys, --stats' pixels_refined and samples, and
+// --aa-mask FILE.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>

@@ -1,4 +1,4 @@
-// Bad input (SPEC §3): exit status 2, one line on standard error naming the file or option and
+// Bad input (docs/CLI.md): exit status 2, one line on standard error naming the file or option and
 // the place (key path or line:column), and no output file left behind.
 #include <gtest/gtest.h>
 

@@ -43,7 +43,7 @@ TEST_F(Commands, MaterialsListsEveryPresetWithItsConstants) {
         char ior[32];
         std::snprintf(ior, sizeof ior, "%g", p.material.ior);
         EXPECT_NE(line.find(ior), std::string::npos) << line;
-        // the reflectance curve, last (SPEC §1.4)
+        // the reflectance curve, last (docs/SCENES.md#reflectance)
         const bool schlick = p.material.reflectance == Reflectance::schlick;
         EXPECT_TRUE(line.ends_with(schlick ? " schlick" : " constant")) << line;
     }

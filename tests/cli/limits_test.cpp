@@ -1,5 +1,5 @@
-// Limits before allocation (README "Limits"): sizes and counts beyond the documented caps, and
-// renders needing more than --max-memory, are refused at once with exit 2 and no file.
+// Limits before allocation (docs/SCENES.md#limits): sizes and counts beyond the documented caps,
+// and renders needing more than --max-memory, are refused at once with exit 2 and no file.
 #include <chrono>
 #include <fstream>
 

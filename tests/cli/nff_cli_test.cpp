@@ -1,4 +1,4 @@
-// `luz render` on NFF scenes (SPEC §2.1): the file's resolution unless --width/--height,
+// `luz render` on NFF scenes (docs/SCENES.md#nff): the file's resolution unless --width/--height,
 // --set on its materials f1…, --region and --aov as on any scene, and bad NFF refused with one
 // FILE:LINE line and nothing written.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-// `luz render --region X0,Y0,X1,Y1` (SPEC §3): the file is X1−X0 by Y1−Y0 and its pixels are the
-// same rectangle of the whole render; the per-term files and the mask are cut the same way;
+// `luz render --region X0,Y0,X1,Y1` (docs/CLI.md): the file is X1−X0 by Y1−Y0 and its pixels are
+// the same rectangle of the whole render; the per-term files and the mask are cut the same way;
 // --stats names the region; a bad rectangle exits 2 naming --region and leaves no file.
 #include <gtest/gtest.h>
 

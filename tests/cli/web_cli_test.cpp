@@ -1,4 +1,4 @@
-// `luz web [-o DIR]` (SPEC §6): writes DIR/luz.html, the very page web/ built; bad folders exit
+// `luz web [-o DIR]` (docs/WEB.md): writes DIR/luz.html, the very page web/ built; bad folders exit
 // 2 with one line naming them; a luz built without Emscripten says how to get the page.
 #include <gtest/gtest.h>
 

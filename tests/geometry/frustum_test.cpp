@@ -1,5 +1,6 @@
-// Truncated cones (SPEC §2: a cone's apex_radius) hit by hand-computed rays: the slanted side
-// and its normal, the top disc, the inside wall, and rays through the holes of an open frustum.
+// Truncated cones (docs/SCENES.md#scene-files: a cone's apex_radius) hit by hand-computed rays: the
+// slanted side and its normal, the top disc, the inside wall, and rays through the holes of an open
+// frustum.
 #include <gtest/gtest.h>
 
 #include <limits>

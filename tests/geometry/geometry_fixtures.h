@@ -36,7 +36,7 @@ inline Vec3 random_direction(Rng& rng) {
     }
 }
 
-/// The `transform` key: p_world = T·Rz·Ry·Rx·S·p (SPEC §2).
+/// The `transform` key: p_world = T·Rz·Ry·Rx·S·p (docs/SCENES.md#scene-files).
 inline Affine user_transform(Vec3 scale, Vec3 rotate_deg, Vec3 translate) {
     return translation(translate) * rotation(2, rotate_deg.z) * rotation(1, rotate_deg.y) *
            rotation(0, rotate_deg.x) * scaling(scale);

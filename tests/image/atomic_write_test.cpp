@@ -1,4 +1,4 @@
-// write_image is atomic (SPEC §3): a failed write leaves no file behind and never touches an
+// write_image is atomic (docs/CLI.md): a failed write leaves no file behind and never touches an
 // existing one; a successful write replaces the file and leaves no temporary file.
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Tests for format_from_path and encode_8bit (SPEC §3: output formats, 8-bit encodings).
+// Tests for format_from_path and encode_8bit (docs/CLI.md: output formats, 8-bit encodings).
 
 #include <gtest/gtest.h>
 

@@ -89,7 +89,7 @@ TEST(OutputKinds, ReplacedFileKeepsItsMode) {
 }
 
 // Replacing is atomic, so the path gets a new inode: other hard links keep the old version
-// (as with mv, rsync or an editor's safe save); README says so.
+// (as with mv, rsync or an editor's safe save); docs/CLI.md#output-paths says so.
 TEST(OutputKinds, HardLinkedFileIsReplacedAndTheOtherNameKeepsTheOldVersion) {
     TempDir dir;
     put_file(dir / "out.png", "old");

@@ -1,6 +1,5 @@
-// Under mpirun (SPEC §3.1): bad input exits 2 with luz's one message (whatever the number of
-// processes), commands other than render run as usual, and the
-// ordinary luz does not link MPI.
+// Under mpirun (docs/DISTRIBUTED.md): bad input exits 2 with luz's one message (whatever the number
+// of processes), commands other than render run as usual, and the ordinary luz does not link MPI.
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -104,7 +103,7 @@ TEST_F(CommandsMpi, ScenesRunsInEveryProcessAsUsual) {
 
 TEST_F(CommandsMpi, ThreadsBeyondTheBindingAreWarnedOf) {
     // Open MPI binds a process of -np 1 to one core: --threads 2 there shares it, and luz says
-    // so (README "Threads per process"); --bind-to none gives it every core, and no warning.
+    // so (docs/DISTRIBUTED.md#threads); --bind-to none gives it every core, and no warning.
     const std::vector<std::string> render = {"render",   "demo:whitted", "--width",   "32",
                                              "--height", "24",           "--threads", "2",
                                              "-q",       "-o",           "x.png"};

@@ -1,6 +1,7 @@
 // A process that dies or stops answering ends the whole `mpirun -np N luz render` within seconds
-// (SPEC §3.1): SIGKILL, SIGTERM or SIGSTOP to one process, or SIGINT to mpirun, during a long
-// render: a non-zero exit, no output or temporary file left behind, no luz-mpi process remaining.
+// (docs/DISTRIBUTED.md): SIGKILL, SIGTERM or SIGSTOP to one process, or SIGINT to mpirun, during a
+// long render: a non-zero exit, no output or temporary file left behind, no luz-mpi process
+// remaining.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -180,7 +181,7 @@ TEST_F(FrozenProcess, AStoppedRank0EndsTheRunNamingIt) {
     EXPECT_TRUE(left.empty()) << *left.begin();
 }
 
-// --checkpoint under mpirun (SPEC §3): interrupted under 3 processes, the checkpoint stays and
+// --checkpoint under mpirun (docs/CLI.md): interrupted under 3 processes, the checkpoint stays and
 // no image; resumed under 2 processes, the image is the uninterrupted one-process render's,
 // bit for bit, the checkpoint is gone, and the resumed run rendered less than the whole.
 class CheckpointMpi : public ProcessFailure {

@@ -1,6 +1,6 @@
-// `mpirun -np 3 luz render --frames` (SPEC §3.1): every frame the same bytes as in one process,
-// and --stats with `processes` and `primary_rays_by_process` (adding up to rays.primary) for
-// the totals and each frame, and for a single frame.
+// `mpirun -np 3 luz render --frames` (docs/DISTRIBUTED.md): every frame the same bytes as in one
+// process, and --stats with `processes` and `primary_rays_by_process` (adding up to rays.primary)
+// for the totals and each frame, and for a single frame.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>

@@ -1,6 +1,6 @@
-// Test helpers for tests/mpi: `mpirun -np N luz …` (SPEC §3.1) run like tests/cli runs luz, a
-// fixture that skips when luz-mpi was not built or mpirun is missing, and the luz-mpi processes
-// of a run found through /proc (for the tests that kill one or interrupt mpirun).
+// Test helpers for tests/mpi: `mpirun -np N luz …` (docs/DISTRIBUTED.md) run like tests/cli runs
+// luz, a fixture that skips when luz-mpi was not built or mpirun is missing, and the luz-mpi
+// processes of a run found through /proc (for the tests that kill one or interrupt mpirun).
 #pragma once
 
 #include <sys/types.h>

@@ -1,5 +1,6 @@
-// `mpirun -np N luz render x.nff` (SPEC §2.1, §3.1): an NFF scene, read by rank 0 and sent to the
-// others, gives the same bytes as in one process, and bad NFF is luz's one FILE:LINE message.
+// `mpirun -np N luz render x.nff` (docs/SCENES.md#nff, §3.1): an NFF scene, read by rank 0 and sent
+// to the others, gives the same bytes as in one process, and bad NFF is luz's one FILE:LINE
+// message.
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -1,8 +1,8 @@
-// `mpirun -np N luz render` gives the same bytes as `luz render` in one process (SPEC §3.1):
-// every pipeline and antialiasing mode, N from 1 to 4, 1 or 2 threads per process, the image,
-// every per-term file and the mask; --region; a scene file naming an OBJ and its MTL, which
-// only rank 0 reads (the others render in an empty folder). --stats counts the same work and
-// says how it was shared.
+// `mpirun -np N luz render` gives the same bytes as `luz render` in one process
+// (docs/DISTRIBUTED.md): every pipeline and antialiasing mode, N from 1 to 4, 1 or 2 threads per
+// process, the image, every per-term file and the mask; --region; a scene file naming an OBJ and
+// its MTL, which only rank 0 reads (the others render in an empty folder). --stats counts the same
+// work and says how it was shared.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>

@@ -1,4 +1,4 @@
-# Per-term images (SPEC §1.5) through the module: Frame.aov holds the terms asked for as numpy
+# Per-term images (docs/SCENES.md#terms) through the module: Frame.aov holds the terms asked for as numpy
 # views over the frame's memory — colour terms and normal (h, w, 3), depth and tests (h, w) —
 # and the colour terms add up to the image. (These need the render core to fill Frame::aovs.)
 import numpy as np

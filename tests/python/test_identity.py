@@ -1,5 +1,5 @@
 # luz.render gives the same pixels, bit for bit, as `luz render` with the same scene and options
-# (SPEC §5): every pipeline, antialiasing mode, --set, dict scenes, meshes; and the same PNG
+# (docs/PYTHON.md): every pipeline, antialiasing mode, --set, dict scenes, meshes; and the same PNG
 # bytes from Frame._repr_png_ and Frame.save as from the command line.
 import json
 
@@ -78,7 +78,7 @@ def test_dict_scene_matches_the_same_file(luz, tmp_path):
     # numpy values in a dict are numbers as well
     scene["lights"][0]["position"] = np.array([5.0, 8.0, 6.0])
     assert same_bits(luz.render(scene, set={"materials.red.n": np.int64(4)}).image, expected)
-    # the smallest scene of SPEC §2
+    # the smallest scene of docs/SCENES.md#scene-files
     small = luz.render({"objects": [{"type": "sphere"}]}, width=32, height=24)
     assert small.image.shape == (24, 32, 3)
 

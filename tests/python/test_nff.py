@@ -1,4 +1,4 @@
-# NFF scenes through the module (SPEC §2.1, §5): luz.load("x.nff") reads the file as `luz render`
+# NFF scenes through the module (docs/SCENES.md#nff, §5): luz.load("x.nff") reads the file as `luz render`
 # does — the same description and the same pixels, --set on its materials f1… — and bad NFF
 # raises luz.SceneError with the CLI's FILE:LINE message.
 import pytest

@@ -1,6 +1,6 @@
-// Antialiasing through the real pipelines (SPEC §1.2): adaptive on demo:primitives against a
-// 16-sample grid, zbuffer ≡ raycast with antialiasing on, one sample per corner in flat
-// regions, refinement masks, and the same bits for any thread count.
+// Antialiasing through the real pipelines (docs/SCENES.md#antialiasing): adaptive on
+// demo:primitives against a 16-sample grid, zbuffer ≡ raycast with antialiasing on, one sample per
+// corner in flat regions, refinement masks, and the same bits for any thread count.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -134,7 +134,7 @@ INSTANTIATE_TEST_SUITE_P(Pipelines, AdaptiveOnPrimitives,
                          });
 
 // The sample positions are the same in every pipeline, so raycast still equals zbuffer up to
-// tessellation with antialiasing on (the SPEC's 99 % of pixels within 2/255).
+// tessellation with antialiasing on (docs/SCENES.md's 99 % of pixels within 2/255).
 TEST(Antialiasing, RaycastEqualsZbufferWithGridAndAdaptive) {
     const SceneDesc d = load_scene(
         "demo:primitives",
@@ -171,8 +171,8 @@ SceneDesc flat_scene(Pipeline p) {
     return d;
 }
 
-// SPEC §1.2: corners are shared by neighbouring pixels — a flat region costs exactly one
-// sample per pixel corner, in every pipeline.
+// docs/SCENES.md#antialiasing: corners are shared by neighbouring pixels — a flat region costs
+// exactly one sample per pixel corner, in every pipeline.
 TEST(Antialiasing, FlatRegionsCostOneSamplePerPixelCorner) {
     for (Pipeline p : {Pipeline::zbuffer, Pipeline::raycast, Pipeline::raytrace}) {
         RenderStats stats;

@@ -1,4 +1,4 @@
-// Camera conventions of SPEC §1.3: basis, pixel centres, view_height and fov_y.
+// Camera conventions of docs/SCENES.md#geometry: basis, pixel centres, view_height and fov_y.
 #include "scene/camera.h"
 
 #include <gtest/gtest.h>

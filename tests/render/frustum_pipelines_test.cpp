@@ -1,5 +1,6 @@
-// Truncated cones (SPEC §2: a cone's apex_radius) through every pipeline: raycast and zbuffer
-// agree on a frustum scene as they do on demo:primitives, and apex_radius 0 is the full cone.
+// Truncated cones (docs/SCENES.md#scene-files: a cone's apex_radius) through every pipeline:
+// raycast and zbuffer agree on a frustum scene as they do on demo:primitives, and apex_radius 0 is
+// the full cone.
 #include <gtest/gtest.h>
 
 #include <string>

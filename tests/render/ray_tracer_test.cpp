@@ -1,6 +1,6 @@
-// The ray tracer against SPEC §1.1: Snell's law, total internal reflection, shadows through
-// opaque and glass objects, two-sided planes, light spheres, tree attenuation, determinism,
-// and raycast ≡ zbuffer.
+// The ray tracer against docs/SCENES.md#ray-tracing: Snell's law, total internal reflection,
+// shadows through opaque and glass objects, two-sided planes, light spheres, tree attenuation,
+// determinism, and raycast ≡ zbuffer.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -201,8 +201,9 @@ TEST(RayTree, ReflectionAddsTheMirroredColourAndMaxDepthCutsIt) {
 }
 
 TEST(RayTree, SchlickLeavesTheMirrorCoefficientAlone) {
-    // SPEC §1.4: `reflectance` changes the specular term only; `reflection` still scales the
-    // reflected ray by itself, at any angle of view (here 45°, where w(45°) would differ).
+    // docs/SCENES.md#reflectance: `reflectance` changes the specular term only; `reflection` still
+    // scales the reflected ray by itself, at any angle of view (here 45°, where w(45°) would
+    // differ).
     SceneDesc d = empty_scene();
     d.render.model = Model::phong;
     d.image.background = Rgb{0.2f, 0.4f, 0.6f};
@@ -284,7 +285,7 @@ TEST(Refraction, ARayThroughAGlassSphereComesOutAndGoesOn) {
 }
 
 TEST(Pipelines, RaycastEqualsZbufferUpToTessellation) {
-    // SPEC: demo:primitives through both pipelines with a fine tessellation agree on at least
+    // docs/SCENES.md: demo:primitives through both pipelines with a fine tessellation agree on at least
     // 99 % of pixels within 2/255.
     SceneDesc d = load_scene("demo:primitives", {{"render.tessellation", "512"}});
     const SceneDesc dz = d;

@@ -1,5 +1,6 @@
-// The antialiasing samplers of SPEC §1.2 on synthetic colour functions: grid positions and box
-// coverage, tent weights, jitter determinism, adaptive splitting and its sample count.
+// The antialiasing samplers of docs/SCENES.md#antialiasing on synthetic colour functions: grid
+// positions and box coverage, tent weights, jitter determinism, adaptive splitting and its sample
+// count.
 #include "render/sampler.h"
 
 #include <gtest/gtest.h>
@@ -96,9 +97,9 @@ TEST(GridSampler, OneSampleIsThePixelCentre) {
     EXPECT_EQ(a.at(2, 3), (Rgb{2.5f, 3.5f, 0.0f}));
 }
 
-// SPEC §1.2: tent weights max(0, 1−|dx|)·max(0, 1−|dy|) over the pixel's and its 8
-// neighbours' samples sum to s² on the regular grid, so that divided by their sum they sum to
-// one — and a constant image stays that constant everywhere, borders included.
+// docs/SCENES.md#antialiasing: tent weights max(0, 1−|dx|)·max(0, 1−|dy|) over the pixel's and its
+// 8 neighbours' samples sum to s² on the regular grid, so that divided by their sum they sum to one
+// — and a constant image stays that constant everywhere, borders included.
 TEST(GridSampler, TentWeightsSumToOne) {
     for (int s = 1; s <= 16; ++s) {
         GridSpec g;
@@ -193,8 +194,8 @@ TEST(GridSampler, CountsOneSamplePerCellAndOnlyTheTentRingSamplesThatWeigh) {
     EXPECT_LT(tent.samples, box.samples * 3 / 2);
 }
 
-// SPEC §1.2: "one sample per pixel corner first (corners are shared by neighbouring pixels)":
-// a flat image costs exactly (W+1)·(H+1) samples, whatever the tiles.
+// docs/SCENES.md#antialiasing: "one sample per pixel corner first (corners are shared by
+// neighbouring pixels)": a flat image costs exactly (W+1)·(H+1) samples, whatever the tiles.
 TEST(AdaptiveSampler, FlatRegionsCostOneSamplePerPixelCorner) {
     SamplerCounts counts;
     AaMask mask;
@@ -206,7 +207,7 @@ TEST(AdaptiveSampler, FlatRegionsCostOneSamplePerPixelCorner) {
     for (uint8_t level : mask.level) EXPECT_EQ(level, 0);
 }
 
-// SPEC §1.2: "largest per-channel difference, on values clamped to [0,1]".
+// docs/SCENES.md#antialiasing: "largest per-channel difference, on values clamped to [0,1]".
 TEST(AdaptiveSampler, CornerDifferenceIsTheLargestChannelRangeOfClampedValues) {
     EXPECT_EQ(corner_difference(Rgb{0.2f}, Rgb{0.2f}, Rgb{0.2f}, Rgb{0.2f}), 0.0f);
     EXPECT_FLOAT_EQ(corner_difference({0.1f, 0.5f, 0.0f}, {0.3f, 0.5f, 0.0f}, {0.2f, 0.9f, 0.0f},

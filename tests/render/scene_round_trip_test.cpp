@@ -75,7 +75,8 @@ TEST(SceneRoundTrip, EditedValuesTransformsAndSettings) {
 }
 
 TEST(SceneRoundTrip, FrustumKeepsItsApexRadius) {
-    // demo:primitives' cone (objects.4) made a truncated cone (SPEC §2: apex_radius)
+    // demo:primitives' cone (objects.4) made a truncated cone (docs/SCENES.md#scene-files:
+    // apex_radius)
     TempFolder t;
     const std::vector<Override> edits = {
         {"image.width", "80"}, {"image.height", "60"}, {"objects.4.apex_radius", "0.2"}};
@@ -91,7 +92,8 @@ TEST(SceneRoundTrip, FrustumKeepsItsApexRadius) {
 }
 
 TEST(SceneRoundTrip, ReflectanceIsWrittenBack) {
-    // SPEC §1.4: a saved scene keeps each material's curve, the metal presets' schlick included.
+    // docs/SCENES.md#reflectance: a saved scene keeps each material's curve, the metal presets'
+    // schlick included.
     TempFolder t;
     const SceneDesc a =
         load_scene("demo:materials", {{"materials.floor.reflectance", "\"schlick\""}});

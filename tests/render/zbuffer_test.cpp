@@ -51,7 +51,7 @@ Image render_desc(const SceneDesc& d, int threads = 1, RenderStats* stats_out = 
 
 bool is_background(const Rgb& c) { return c == Rgb{0.0f, 0.0f, 1.0f}; }
 
-// SPEC: "an orthographic sphere lit along the view axis — every covered pixel within 1/255 of
+// docs/SCENES.md: "an orthographic sphere lit along the view axis — every covered pixel within 1/255 of
 // the closed form at a fine tessellation".
 TEST(Zbuffer, OrthographicSphereMatchesTheClosedFormAtEveryCoveredPixel) {
     SceneDesc d = base_scene(160, 160);

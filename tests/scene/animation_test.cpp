@@ -1,6 +1,7 @@
-// Tests of animations in the scene layer (SPEC §2 `animation`): keyframes interpolated linearly
-// and held, arrays, the camera's turntable orbit, keys set after --set, meshes read once over
-// the frames, and bad animations refused with a message naming the key path and the frame.
+// Tests of animations in the scene layer (docs/SCENES.md#scene-files `animation`): keyframes
+// interpolated linearly and held, arrays, the camera's turntable orbit, keys set after --set,
+// meshes read once over the frames, and bad animations refused with a message naming the key path
+// and the frame.
 #include "scene/animation.h"
 
 #include <gmock/gmock.h>
@@ -255,7 +256,7 @@ TEST(Animation, OrbitIsAboutUpWhateverItsLength) {
 }
 
 TEST(Animation, OrbitTurnsTheKeyedPosition) {
-    // SPEC §2: the orbit comes after the keys.
+    // docs/SCENES.md#scene-files: the orbit comes after the keys.
     const std::string json = orbit_scene(
         R"({"projection": "perspective", "look_at": [0, 0, 0]})",
         R"({"frames": 4, "orbit": 360, "keys": {"camera.position": [[0, [2, 1, 0]], [2, [4, 1, 0]]]}})");
@@ -266,9 +267,9 @@ TEST(Animation, OrbitTurnsTheKeyedPosition) {
 }
 
 TEST(Animation, ThingsPlacedByTheCameraFollowTheOrbit) {
-    // With no lights, one light sits at the camera's upper left (SPEC §2): the camera of frame
-    // f is the orbited one, so frame f is the scene with camera.position set to where the orbit
-    // put it, the light included. So is a light without a position.
+    // With no lights, one light sits at the camera's upper left (docs/SCENES.md#scene-files): the
+    // camera of frame f is the orbited one, so frame f is the scene with camera.position set to
+    // where the orbit put it, the light included. So is a light without a position.
     for (const char* lights : {"", R"(, "lights": [{"intensity": 2}])"}) {
         SCOPED_TRACE(lights);
         const std::string json =

@@ -1,5 +1,6 @@
 // Tests of the built-in scenes: they parse, demo:primitives has its five shapes on a floor,
-// in view and apart, and its exposure computed by hand (SPEC §1 model 2) is reasonable.
+// in view and apart, and its exposure computed by hand (docs/SCENES.md#models model 2) is
+// reasonable.
 #include "scene/demo_scenes.h"
 
 #include <gtest/gtest.h>
@@ -119,7 +120,7 @@ TEST(DemoScenes, PrimitivesShapesAreInViewAndApart) {
 
 TEST(DemoScenes, PrimitivesExposureByHand) {
     // At the top of each shape (N = +y) and on its side facing the camera (N = w):
-    // I = Ia·Ka + Σ Il/(d+K)·Kd·cosθ (SPEC §1 model 2 without the specular term).
+    // I = Ia·Ka + Σ Il/(d+K)·Kd·cosθ (docs/SCENES.md#models model 2 without the specular term).
     const SceneDesc s = load_scene("demo:primitives");
     const Vec3 w = normalize(s.camera.position - s.camera.look_at);
     for (const ObjectDesc& o : s.objects) {
@@ -143,7 +144,7 @@ TEST(DemoScenes, PrimitivesExposureByHand) {
 
 TEST(DemoScenes, MaterialsShowsEveryPresetInView) {
     // demo:materials is the presets sheet: one sphere per preset (the lecture's eight and the
-    // three metals), each wholly inside the picture (SPEC §1.3's perspective camera).
+    // three metals), each wholly inside the picture (docs/SCENES.md#geometry's perspective camera).
     const SceneDesc s = load_scene("demo:materials");
     const CameraDesc& c = s.camera;
     ASSERT_EQ(c.projection, Projection::perspective);

@@ -1,5 +1,5 @@
-// Tests of NFF scenes (SPEC §2.1): each statement against the description worked out by hand,
-// the settings an NFF file implies, polygons as meshes, and FILE:LINE messages for bad input.
+// Tests of NFF scenes (docs/SCENES.md#nff): each statement against the description worked out by
+// hand, the settings an NFF file implies, polygons as meshes, and FILE:LINE messages for bad input.
 #include "scene/nff_reader.h"
 
 #include <gmock/gmock.h>

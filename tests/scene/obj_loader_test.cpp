@@ -1,5 +1,5 @@
-// Tests of OBJ/MTL loading (SPEC §2 `mesh`): triangulation, index forms, normals, line ends,
-// MTL mapping, warnings, and FILE:LINE messages for bad input.
+// Tests of OBJ/MTL loading (docs/SCENES.md#scene-files `mesh`): triangulation, index forms,
+// normals, line ends, MTL mapping, warnings, and FILE:LINE messages for bad input.
 #include "scene/obj_loader.h"
 
 #include <gmock/gmock.h>

@@ -31,8 +31,8 @@ TEST(Presets, TheLecturesEightInOrderThenTheThreeMetals) {
 }
 
 TEST(Presets, MetalsUseSchlicksCurveFromMeasuredReflectance) {
-    // SPEC §1.4, §2: Ks = F(0°), linear RGB, from Hoffman's table (Real-Time Rendering 3rd
-    // ed.; see presets.cpp), with `reflectance: schlick` and a mirror.
+    // docs/SCENES.md#reflectance, #scene-files: Ks = F(0°), linear RGB, from Hoffman's table
+    // (Real-Time Rendering 3rd ed.; see presets.cpp), with `reflectance: schlick` and a mirror.
     const struct {
         const char* name;
         Rgb F0;

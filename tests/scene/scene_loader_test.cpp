@@ -1,5 +1,5 @@
-// Tests of the scene loader (SPEC §2): defaults, every key, materials, transforms, --set
-// overrides, the implicit light, and the messages of bad scenes.
+// Tests of the scene loader (docs/SCENES.md#scene-files): defaults, every key, materials,
+// transforms, --set overrides, the implicit light, and the messages of bad scenes.
 #include "scene/scene_loader.h"
 
 #include <gmock/gmock.h>
@@ -262,8 +262,8 @@ TEST(SceneLoader, MaterialFromPresetWithOverrides) {
 }
 
 TEST(SceneLoader, ReflectanceIsConstantUnlessSchlick) {
-    // SPEC §1.4: `reflectance` per material, `constant` by default; the metal presets bring
-    // `schlick`, which a material may override like any constant.
+    // docs/SCENES.md#reflectance: `reflectance` per material, `constant` by default; the metal
+    // presets bring `schlick`, which a material may override like any constant.
     const SceneDesc s = parse(R"({
       "materials": { "plain": { "ks": 0.5 },
                      "fresnel_like": { "ks": 0.04, "reflectance": "schlick" },

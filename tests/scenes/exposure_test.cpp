@@ -1,5 +1,5 @@
-// Defaults are tested (SPEC §1): every built-in scene, rendered at its own size with its own
-// settings, is well exposed — neither too dark nor washed out.
+// Defaults are tested (docs/SCENES.md#models): every built-in scene, rendered at its own size with
+// its own settings, is well exposed — neither too dark nor washed out.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,5 +1,6 @@
-// The distance law of phong's light term (SPEC §1 `attenuation`): shade() against values
-// computed by hand for none (Il), linear (Il/(d+K)) and inverse_square (Il/d²); lambert has none.
+// The distance law of phong's light term (docs/SCENES.md#models `attenuation`): shade() against
+// values computed by hand for none (Il), linear (Il/(d+K)) and inverse_square (Il/d²); lambert has
+// none.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// shade() against values computed by hand from the formulas of SPEC §1.
+// shade() against values computed by hand from the formulas of docs/SCENES.md#models.
 #include "shading/shade.h"
 
 #include <gtest/gtest.h>
@@ -160,7 +160,7 @@ TEST(Shade, CheckerReplacesKaKdInOddCells) {
     expect_rgb(at({1.5f, 0, 0.5f}), Rgb{0.1f + 0.45f * L1.y});
 }
 
-// --- the reflectance curve w(i, λ) (SPEC §1.4) ---
+// --- the reflectance curve w(i, λ) (docs/SCENES.md#reflectance) ---
 
 Material schlick_material(Rgb Ks) {
     Material m = slide_material();
@@ -271,7 +271,7 @@ TEST(Shade, SchlickWithoutKsStillShinesAtGrazing) {
 }
 
 TEST(Shade, LambertIgnoresReflectance) {
-    // Lambert has no specular term (SPEC §1.4): the curve changes no bit.
+    // Lambert has no specular term (docs/SCENES.md#reflectance): the curve changes no bit.
     const std::vector<Light> lights{{Vec3{0, 2, 1}, Rgb{1.0f, 0.5f, 2.0f}, 0},
                                     {Vec3{1, 0.1f, 0.2f}, Rgb{3.0f}, 0}};
     const Lighting lighting{Model::lambert, Rgb{0.7f}, 1.0f, lights};
@@ -289,8 +289,8 @@ TEST(Shade, LambertIgnoresReflectance) {
     }
 }
 
-/// shade()'s phong before `reflectance` existed (SPEC §1, model 2), operation for operation:
-/// Ia·Ka + Σ_j vis_j·Il_j/(d_j+K)·(Kd·cosθ_j + Ks·cosα_j^n).
+/// shade()'s phong before `reflectance` existed (docs/SCENES.md#models, model 2), operation for
+/// operation: Ia·Ka + Σ_j vis_j·Il_j/(d_j+K)·(Kd·cosθ_j + Ks·cosα_j^n).
 Rgb previous_phong(const ShadingPoint& p, const Lighting& lighting) {
     const Material& m = *p.material;
     const Vec3 N = dot(p.N, p.S) < 0 ? -p.N : p.N;

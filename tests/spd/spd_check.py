@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-# The SPD's own check (SPEC §2.1, issue 39 item 3): each of the seven Standard Procedural
+# The SPD's own check (docs/SCENES.md#nff, issue 39 item 3): each of the seven Standard Procedural
 # Databases scenes rendered by its testing procedure — 512², rays through the 513×513 pixel
 # corners (adaptive antialiasing whose threshold refines nothing), max_depth 4 (the SPD's depth 5
 # counting the eye ray) — and luz's --stats ray counts compared with the SPD's published ones.

@@ -210,7 +210,8 @@ TEST_F(ViewTest, WithoutItsModuleViewSaysWhereItLookedAndRenderStillWorks) {
 }
 
 TEST_F(ViewTest, NffSceneShowsWhatRenderMakes) {
-    // SPEC §2.1: `luz view x.nff` reads NFF as `luz render` does (its resolution, --set f1).
+    // docs/SCENES.md#nff: `luz view x.nff` reads NFF as `luz render` does (its resolution, --set
+    // f1).
     const std::string nff = std::string(LUZ_SOURCE_DIR) + "/tests/scenes/nff/small.nff";
     const std::vector<std::string> set = {"--set", "materials.f1.kd=[0,0,1]"};
     std::vector<std::string> v_args = {nff, "--screenshot", "shot.png"};

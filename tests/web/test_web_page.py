@@ -1,4 +1,4 @@
-"""luz.html in headless Chromium from file:// (SPEC §6): it loads without a console error, gives
+"""luz.html in headless Chromium from file:// (docs/WEB.md): it loads without a console error, gives
 the pixels `luz render` gives, an edit changes the image as --set does, a bad scene shows the
 CLI's message and keeps the last image, a click returns that pixel's ray tree.
 

@@ -1,4 +1,4 @@
-// Orbit, pan and zoom of a CameraDesc (SPEC §1.3 basis).
+// Orbit, pan and zoom of a CameraDesc (docs/SCENES.md#geometry basis).
 #include "app/viewer/camera_controls.h"
 
 #include <cmath>

@@ -107,7 +107,7 @@ bool lighting_section(SceneDesc& d) {
     bool changed = false;
     changed |= edit_intensity(PanelSlider::ambient, d.ambient);
     changed |= drag_float(PanelSlider::attenuation_k, d.attenuation_k, 0.01f);
-    // phong's distance law (SPEC §1), in Attenuation's order
+    // phong's distance law (docs/SCENES.md#models), in Attenuation's order
     changed |= edit_enum("attenuation", d.attenuation, {"none", "linear", "inverse_square"});
     for (size_t j = 0; j < d.lights.size(); ++j) {
         ImGui::PushID(static_cast<int>(j));
@@ -139,7 +139,7 @@ bool materials_section(SceneDesc& d) {
             changed |= slider_float(PanelSlider::reflection, m.reflection);
             changed |= slider_float(PanelSlider::transparency, m.transparency);
             changed |= slider_float(PanelSlider::ior, m.ior);
-            // w(i, λ) of the specular term (SPEC §1.4), in Reflectance's order
+            // w(i, λ) of the specular term (docs/SCENES.md#reflectance), in Reflectance's order
             changed |= edit_enum("reflectance", m.reflectance, {"constant", "schlick"});
             if (m.checker) {
                 changed |= edit_unit_rgb("checker Ka", m.checker->ka);
@@ -176,7 +176,8 @@ bool draw_scene_panel(SceneDesc& d, PanelState& state) {
     ImGui::Text("%.2f M %s/s   preview %.1f fps", f.seconds > 0 ? f.rays / f.seconds * 1e-6 : 0.0,
                 d.render.pipeline == Pipeline::zbuffer ? "samples" : "rays", state.fps);
     bool changed = false;
-    // What the window shows: the image, or one of the terms that add up to it (SPEC §1.5).
+    // What the window shows: the image, or one of the terms that add up to it
+    // (docs/SCENES.md#terms).
     {
         int i = state.show.term ? 1 + static_cast<int>(state.show.kind) : 0;
         std::string items = std::string("image") + '\0';

@@ -1,4 +1,5 @@
-// The viewer's side panel: every constant of SPEC §1 and the render settings, edited live.
+// The viewer's side panel: every constant of docs/SCENES.md#models and the render settings, edited
+// live.
 #pragma once
 
 #include <string>
@@ -17,7 +18,7 @@ struct PanelState {
     // edited
     std::string image_path;  ///< where "Save image" writes (.png, .exr, …)
     std::string scene_path;  ///< where "Save scene" writes (.json)
-    Showing show;            ///< the image, or one of its terms (SPEC §1.5)
+    Showing show;            ///< the image, or one of its terms (docs/SCENES.md#terms)
     // requests (set for one frame)
     bool save_image = false, save_scene = false, reset_camera = false;
 };
@@ -25,7 +26,7 @@ struct PanelState {
 /// Draws the panel's scene sections into the current ImGui window; true when `desc` changed.
 bool draw_scene_panel(SceneDesc& desc, PanelState& state);
 
-/// The keys, mouse actions and what they do, for the help overlay and README.
+/// The keys, mouse actions and what they do, for the help overlay and docs/VIEWER.md.
 const char* viewer_help_text();
 
 }  // namespace luz

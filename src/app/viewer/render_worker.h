@@ -36,7 +36,7 @@ struct PassPlan {
 };
 std::vector<PassPlan> plan_passes(const Settings& settings);
 
-/// What the viewer shows: the image, or one of its per-term images (SPEC §1.5).
+/// What the viewer shows: the image, or one of its per-term images (docs/SCENES.md#terms).
 struct Showing {
     bool term = false;
     AovKind kind = AovKind::ambient;

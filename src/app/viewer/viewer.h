@@ -1,5 +1,5 @@
-// The viewer of SPEC §4 (`luz view`): an SDL2 + OpenGL window with the progressively rendered
-// image, a Dear ImGui panel that edits the scene live, and the ray-tree inspector.
+// The viewer of docs/VIEWER.md (`luz view`): an SDL2 + OpenGL window with the progressively
+// rendered image, a Dear ImGui panel that edits the scene live, and the ray-tree inspector.
 #pragma once
 
 #include "app/view_command.h"

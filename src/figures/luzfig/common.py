@@ -169,7 +169,7 @@ def load_scene(ctx, name):
 
 
 def camera_rays(camera, w, h):
-    """Each pixel centre's camera ray (SPEC §1.3): origins and unit directions (h, w, 3)."""
+    """Each pixel centre's camera ray (docs/SCENES.md#geometry): origins and unit directions (h, w, 3)."""
     pos = np.array(camera.get("position", [0, 0, 5]), float)
     look = np.array(camera.get("look_at", [0, 0, 0]), float)
     up = np.array(camera.get("up", [0, 1, 0]), float)
@@ -220,7 +220,7 @@ def copy_scene_files(ctx):
 
 
 def write_web_page(ctx):
-    """Writes luz.html (`luz web`, SPEC §6) into the output folder, so that each figure's scene
+    """Writes luz.html (`luz web`, docs/WEB.md) into the output folder, so that each figure's scene
     opens live in it; False when this luz was built without the page (the links are left out)."""
     r = subprocess.run([ctx.luz, "web", "-o", ctx.out], capture_output=True, text=True)
     return r.returncode == 0

@@ -1,5 +1,5 @@
 """The reflectance curve w(i, λ) (lecture: "w(i, λ) é uma função muito complexa … na prática,
-é comum substituir w(i, λ) por uma constante Ks"; SPEC §1.4): Schlick's curves of the metal
+é comum substituir w(i, λ) por uma constante Ks"; docs/SCENES.md#reflectance): Schlick's curves of the metal
 presets and of glass and water, and gold, silver and copper rendered with constant Ks beside
 Schlick's curve, the ratio of their specular terms checked against the formula."""
 
@@ -32,7 +32,7 @@ def preset_ks(ctx):
 
 
 def schlick(ks, cos_t):
-    """Schlick's w(θ) = Ks + (1 − Ks)(1 − cosθ)^5 (SPEC §1.4)."""
+    """Schlick's w(θ) = Ks + (1 − Ks)(1 − cosθ)^5 (docs/SCENES.md#reflectance)."""
     return ks + (1 - ks) * (1 - cos_t) ** 5
 
 

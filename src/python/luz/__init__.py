@@ -1,5 +1,5 @@
 """luz: the classic illumination models (ambient, Lambert, Phong, Whitted ray tracing,
-z-buffer) as a Python module; the contract is SPEC section 5.
+z-buffer) as a Python module; the contract is docs/PYTHON.md.
 
     import luz
     scene = luz.load("demo:whitted")              # a path, "demo:NAME" or a dict
