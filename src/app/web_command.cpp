@@ -1,5 +1,5 @@
-// `luz web [-o DIR]`: the page built by web/ (Emscripten) is included byte for byte by the
-// assembler (.incbin) when CMake names it (LUZ_WEB_HTML), and written out as DIR/luz.html.
+// `luz web [-o DIR]`: the page built by web/ (Emscripten), whose bytes app/web_page_bytes.cpp
+// holds when the build made it (LUZ_HAVE_WEB_PAGE), written out as DIR/luz.html.
 #include "app/web_command.h"
 
 #include <CLI/CLI.hpp>
@@ -8,15 +8,7 @@
 #include "app/cli_main.h"
 #include "luz/luz.h"
 
-#ifdef LUZ_WEB_HTML
-asm(".pushsection .rodata\n"
-    ".global luz_web_html_begin\n"
-    "luz_web_html_begin:\n"
-    ".incbin \"" LUZ_WEB_HTML
-    "\"\n"
-    ".global luz_web_html_end\n"
-    "luz_web_html_end:\n"
-    ".popsection\n");
+#ifdef LUZ_HAVE_WEB_PAGE  // app/web_page_bytes.cpp
 extern "C" const char luz_web_html_begin[];
 extern "C" const char luz_web_html_end[];
 #endif
@@ -30,7 +22,7 @@ void add_web_options(CLI::App& cmd, WebOptions& o) {
 }
 
 std::string_view embedded_web_page() {
-#ifdef LUZ_WEB_HTML
+#ifdef LUZ_HAVE_WEB_PAGE
     return std::string_view(luz_web_html_begin, luz_web_html_end - luz_web_html_begin);
 #else
     return {};

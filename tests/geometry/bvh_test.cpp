@@ -288,7 +288,9 @@ TEST(PrimBlock, AxisLanesMissedOnlyWhatTheExactTestMisses) {
         ++tested;
         rejected += missed;
         grazing_hits += met && rho != 1.0f;
-        if (missed) ASSERT_FALSE(met) << "ray " << k << " lane " << lane;
+        if (missed) {
+            ASSERT_FALSE(met) << "ray " << k << " lane " << lane;
+        }
     }
     EXPECT_GT(rejected, tested / 3);
     EXPECT_GT(grazing_hits, 1000);
