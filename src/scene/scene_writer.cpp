@@ -5,12 +5,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <stdexcept>
 
 #include "scene/embedded_files.h"
+#include "scene/mesh_data.h"
 
 namespace luz {
 
@@ -161,20 +163,10 @@ std::string scene_to_json(const SceneDesc& d, const std::string& out_dir) {
     return j.dump(2) + "\n";
 }
 
-void write_scene(const std::string& path, const SceneDesc& desc) {
-    const std::string out_dir = fs::path(path).parent_path().string();
-    // A built-in scene's meshes live in the binary: put a copy next to the saved scene.
-    for (const ObjectDesc& o : desc.objects) {
-        std::error_code ec;
-        if (o.file.empty() || fs::exists(o.file, ec)) continue;  // not a mesh, or on disk
-        const auto text = embedded_file(o.file);
-        const fs::path target = fs::path(out_dir.empty() ? "." : out_dir) / o.file;
-        if (!text || fs::exists(target, ec)) continue;
-        std::ofstream f(target, std::ios::binary);
-        f << *text;
-        if (!f) throw std::runtime_error(target.string() + ": cannot write");
-    }
-    const std::string text = scene_to_json(desc, out_dir);
+namespace {
+
+/// Writes `text` to `path` whole or not at all (a temporary file renamed over it).
+void write_whole(const std::string& path, const std::string& text) {
     const std::string tmp = path + ".tmp";
     {
         std::ofstream f(tmp, std::ios::binary);
@@ -191,6 +183,79 @@ void write_scene(const std::string& path, const SceneDesc& desc) {
         std::remove(tmp.c_str());
         throw std::runtime_error(path + ": cannot write: " + ec.message());
     }
+}
+
+/// A float as the shortest text that reads back as the same bits.
+void append_float(std::string& out, float x) {
+    char buf[32];
+    out.append(buf, std::to_chars(buf, buf + sizeof buf, x).ptr);
+}
+
+/// A mesh held only in memory (an NFF file's polygons) as Wavefront OBJ text: the same
+/// vertices, normals and triangles, each number read back as the same bits.
+std::string obj_text(const MeshData& m) {
+    std::string out = "# " + m.file + ", written by luz\n";
+    const auto line = [&](const char* tag, const Vec3& p) {
+        out += tag;
+        for (float x : {p.x, p.y, p.z}) {
+            out += ' ';
+            append_float(out, x);
+        }
+        out += '\n';
+    };
+    for (const Vec3& p : m.positions) line("v", p);
+    for (const Vec3& n : m.normals) line("vn", n);
+    for (size_t k = 0; k < m.position.size(); k += 3) {
+        out += 'f';
+        for (size_t c = k; c < k + 3; ++c) {
+            out += ' ' + std::to_string(m.position[c] + 1);
+            if (m.normal[c] >= 0) out += "//" + std::to_string(m.normal[c] + 1);
+        }
+        out += '\n';
+    }
+    return out;
+}
+
+/// The file to save `text` in beside the scene: `name`, or name-2, name-3 … when a different
+/// file is already there (an existing file is never replaced).
+fs::path free_name(const fs::path& dir, const std::string& stem, const std::string& text) {
+    for (int k = 1;; ++k) {
+        const fs::path p = dir / ((k == 1 ? stem : stem + "-" + std::to_string(k)) + ".obj");
+        std::error_code ec;
+        if (!fs::exists(p, ec)) return p;
+        std::ifstream f(p, std::ios::binary);
+        const std::string old{std::istreambuf_iterator<char>(f), {}};
+        if (old == text) return p;
+    }
+}
+
+}  // namespace
+
+void write_scene(const std::string& path, const SceneDesc& desc) {
+    const std::string out_dir = fs::path(path).parent_path().string();
+    const fs::path dir = out_dir.empty() ? "." : out_dir;
+    SceneDesc saved = desc;
+    for (ObjectDesc& o : saved.objects) {
+        std::error_code ec;
+        if (o.file.empty() || fs::exists(o.file, ec)) continue;  // not a mesh, or on disk
+        if (const auto text = embedded_file(o.file)) {
+            // A built-in scene's meshes live in the binary: a copy next to the saved scene.
+            const fs::path target = dir / o.file;
+            if (!fs::exists(target, ec)) write_whole(target.string(), std::string(*text));
+        } else if (o.mesh) {
+            // A mesh that exists only in memory (an NFF file's polygons, named "FILE#MATERIAL"):
+            // written as an OBJ file beside the saved scene, which names it.
+            std::string stem = fs::path(o.file).filename().string();
+            for (char& c : stem) {
+                if (c == '#') c = '.';
+            }
+            const std::string text = obj_text(*o.mesh);
+            const fs::path target = free_name(dir, stem, text);
+            if (!fs::exists(target, ec)) write_whole(target.string(), text);
+            o.file = target.string();
+        }
+    }
+    write_whole(path, scene_to_json(saved, out_dir));
 }
 
 }  // namespace luz

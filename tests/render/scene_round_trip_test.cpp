@@ -138,5 +138,46 @@ TEST(SceneRoundTrip, BuiltInMeshIsWrittenNextToTheScene) {
     EXPECT_TRUE(render_of(a).pixels == render_of(b).pixels);
 }
 
+TEST(SceneRoundTrip, NffPolygonsAreWrittenAsObjFilesThatReload) {
+    // An NFF file's polygons are meshes held in memory ("FILE#MATERIAL"): saving the scene
+    // writes each as an OBJ file beside it, bit for bit, never over a different file.
+    TempFolder t;
+    fs::create_directories(t.path / "in");
+    fs::create_directories(t.path / "out");
+    std::ofstream(t.path / "in" / "poly.nff")
+        << "v\nfrom 0.3 0.4 6\nat 0 0 0\nup 0 1 0\nangle 40\nhither 1\nresolution 48 36\n"
+           "b 0.1 0.2 0.3\nl 4 5 6\n"
+           "f 0.8 0.3 0.2 0.6 0.3 20 0 1\n"
+           // a concave polygon (a comb) and a smooth patch
+           "p 8\n-2 -1 0\n2 -1 0\n2 1.1 0\n1 1.1 0\n1 0 0\n-1 0 0\n-1 1.1 0\n-2 1.1 0\n"
+           "f 0.2 0.5 0.9 0.7 0.2 10 0.3 1.5\n"
+           "pp 3\n-1 -1.5 0.5 0 0.6 0.8\n1.3 -1.4 0.4 0.3 0 0.954\n0 1.7 0.6 -0.2 0.3 0.933\n"
+           "s 0.3 -0.2 1.2 0.4\n";
+    const SceneDesc a = load_scene((t.path / "in" / "poly.nff").string());
+    // a different file already has the first mesh's name: it stays as it was
+    std::ofstream(t.path / "out" / "poly.nff.f1.obj") << "# mine\n";
+    const fs::path saved = t.path / "out" / "saved.json";
+    write_scene(saved.string(), a);
+    std::ifstream mine(t.path / "out" / "poly.nff.f1.obj");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(mine), {}), "# mine\n");
+    EXPECT_TRUE(fs::exists(t.path / "out" / "poly.nff.f1-2.obj"));
+    EXPECT_TRUE(fs::exists(t.path / "out" / "poly.nff.f2.obj"));
+    const SceneDesc b = load_scene(saved.string());
+    std::ifstream f(saved);
+    const std::string text{std::istreambuf_iterator<char>(f), {}};
+    EXPECT_NE(text.find("\"poly.nff.f1-2.obj\""), std::string::npos) << text;
+    const Image ia = render_of(a), ib = render_of(b);
+    EXPECT_TRUE(ia.pixels == ib.pixels) << "the same image bits";
+    // saved again into the same folder: the same files, no new ones
+    const auto files = [&] {
+        return std::distance(fs::directory_iterator(t.path / "out"), fs::directory_iterator{});
+    };
+    const auto before = files();
+    write_scene((t.path / "out" / "again.json").string(), b);
+    EXPECT_EQ(files(), before + 1);
+    EXPECT_TRUE(render_of(load_scene((t.path / "out" / "again.json").string())).pixels ==
+                ia.pixels);
+}
+
 }  // namespace
 }  // namespace luz
