@@ -1,6 +1,7 @@
 // Adaptive antialiasing (docs/SCENES.md#antialiasing): a sample at each pixel corner, pixels whose
 // corners differ split into four recursively (refine_tile), and the mask of what was refined
-// (--aa-mask).
+// (--aa-mask); sample_tile_corners() and sample_tile_adaptive() render a tile's two passes with a
+// colour function.
 #pragma once
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 
 #include "image/image.h"
 #include "render/aov.h"
+#include "render/colour_function.h"
 #include "render/tiles.h"
 #include "scene/scene_desc.h"
 
@@ -171,6 +173,48 @@ void refine_tile(
 inline PixelRect corner_rect(const PixelRect& tile, int width, int height) {
     return {tile.x0, tile.y0, tile.x1 + (tile.x1 == width ? 1 : 0),
             tile.y1 + (tile.y1 == height ? 1 : 0)};
+}
+
+/// Adaptive's pass 1 for one tile: the samples at the corners `r` (corner_rect()) into
+/// `corners` (rows of `row` samples), one point at a time; the corners of `window`'s pixels
+/// counted as its pixels. `work` is the tile's counters, counts and progress
+/// (render/tile_store.h).
+template <class Colour, class Work, class S>
+void sample_tile_corners(const PixelRect& r, const PixelRect& window, Colour& colour, Work& work,
+                         S* corners, size_t row) {
+    for (int y = r.y0; y < r.y1; ++y) {
+        for (int x = r.x0; x < r.x1; ++x) {
+            const float fx = static_cast<float>(x), fy = static_cast<float>(y);
+            work.progress.cost(
+                sample_points(colour, &fx, &fy, 1, work.counters, &corners[y * row + x]));
+            // the window's pixels: its corners less its last row and column
+            if (x < window.x1 && y < window.y1) work.progress.pixel();
+        }
+    }
+    work.counts.samples += static_cast<uint64_t>(r.width()) * r.height();
+}
+
+/// Adaptive's pass 2 for one tile: its pixels refined where their `corners` differ
+/// (refine_tile()), the sub-corners asked of `colour` one at a time, into `out` and `mask`.
+template <class Colour, class Work, class S, class Out>
+void sample_tile_adaptive(const AdaptiveSpec& spec, const PixelRect& tile, const S* corners,
+                          Colour& colour, Work& work, Out& out, AaMask* mask) {
+    struct Fine {
+        Colour& fn;
+        Work& work;
+        float inv_S;
+        void begin_pixel(int, int) {}
+        S colour(int i, int j, int k, int l) {
+            const float x = static_cast<float>(i) + static_cast<float>(k) * inv_S;
+            const float y = static_cast<float>(j) + static_cast<float>(l) * inv_S;
+            S s;
+            work.progress.cost(sample_points(fn, &x, &y, 1, work.counters, &s));
+            return s;
+        }
+    };
+    Fine fine{colour, work, 1.0f / static_cast<float>(spec.lattice())};
+    refine_tile(spec, tile, corners, fine, out, mask, work.counts,
+                [&work] { work.progress.pixel(); });
 }
 
 /// An image that shows which pixels adaptive antialiasing refined and how deeply: pixels not

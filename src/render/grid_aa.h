@@ -1,5 +1,6 @@
 // Grid antialiasing (docs/SCENES.md#antialiasing): s² samples a pixel at fixed or jittered
-// positions, combined by the box or the tent filter (filter_tile).
+// positions, combined by the box or the tent filter (filter_tile); sample_tile_grid() renders a
+// tile of them with a colour function.
 #pragma once
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 
 #include "image/image.h"
 #include "render/aov.h"
+#include "render/colour_function.h"
 #include "render/tiles.h"
 #include "scene/scene_desc.h"
 
@@ -87,6 +89,55 @@ template <class S>
 std::vector<S>& grid_scratch_for_this_thread() {
     thread_local std::vector<S> buf;
     return buf;
+}
+
+/// The pixels of `tile` with grid antialiasing, into `out`: the samples of its pixels and of
+/// the tent's ring that weigh anything (GridSpec::needed()), asked of `colour` a pixel at a time
+/// (sample_points(), in chunks of 64), then filtered (filter_tile()). `work` is the tile's
+/// counters, counts and progress (render/tile_store.h).
+template <class Colour, class Work, class Out>
+void sample_tile_grid(const GridSpec& g, const PixelRect& tile, Colour& colour, Work& work,
+                      Out& out) {
+    using S = SampleOf<Colour, decltype(work.counters)>;
+    const PixelRect region = g.region(tile);
+    const int s = g.s, stride = region.width() * s;
+    std::vector<S>& buf = grid_scratch_for_this_thread<S>();
+    buf.resize(static_cast<size_t>(stride) * region.height() * s);
+    for (int j = region.y0; j < region.y1; ++j) {
+        for (int i = region.x0; i < region.x1; ++i) {
+            const bool inside = i >= tile.x0 && i < tile.x1 && j >= tile.y0 && j < tile.y1;
+            constexpr int kChunk = 64;
+            float xs[kChunk], ys[kChunk];
+            S* dst[kChunk];
+            S got[kChunk];
+            int n = 0;
+            const auto flush = [&] {
+                work.progress.cost(sample_points(colour, xs, ys, n, work.counters, got));
+                for (int k = 0; k < n; ++k) *dst[k] = got[k];
+                work.counts.samples += static_cast<uint64_t>(n);
+                n = 0;
+            };
+            for (int b = 0; b < s; ++b) {
+                S* row = &buf[static_cast<size_t>((j - region.y0) * s + b) * stride +
+                              (i - region.x0) * s];
+                for (int a = 0; a < s; ++a) {
+                    float x, y;
+                    g.position(i, j, a, b, x, y);
+                    if (inside || g.needed(tile, x, y)) {
+                        xs[n] = x;
+                        ys[n] = y;
+                        dst[n++] = &row[a];
+                        if (n == kChunk) flush();
+                    } else {
+                        row[a] = S{};
+                    }
+                }
+            }
+            if (n > 0) flush();
+            if (inside) work.progress.pixel();
+        }
+    }
+    filter_tile(g, tile, region, buf.data(), out);
 }
 
 }  // namespace luz

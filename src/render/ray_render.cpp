@@ -1,7 +1,8 @@
 // The raycast and raytrace pipelines: one engine shared by all threads, asked for the colour at
 // each sample point by the antialiasing sampler (render/sampler.h), which renders the image in
-// tiles in parallel; counters per tile summed in tile order. The reference (Whitted) observed
-// by a TermRecorder gives the per-term images; otherwise the batch engine gives the colour.
+// tiles in parallel, through RayColour (render/ray_colour.h); counters per tile summed in tile
+// order. The reference (Whitted) observed by a TermRecorder gives the per-term images;
+// otherwise the batch engine gives the colour.
 #include "render/ray_render.h"
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <type_traits>
 
 #include "render/batch_tracer.h"
+#include "render/ray_colour.h"
 #include "render/sampler.h"
 
 namespace luz {
@@ -40,61 +42,27 @@ void render_into(const BuiltScene& scene, const Settings& settings, const Render
                         "); render.min_weight (e.g. --set render.min_weight=0.01) stops rays "
                         "that weigh little, or lower render.max_depth");
     };
-    auto watch_sample = [&](uint64_t before, const TraceCounters& c) {
-        watch_rays(work_of(c) - before);
-    };
     std::vector<TraceCounters> counters;
     SamplerCounts counts;
+    const AntialiasDesc& aa = settings.render.antialias;
     constexpr bool kWhole = std::is_same_v<Out, Image>;  // ImageRows: colour only
     if (kWhole && control.terms &&
         control.terms->any()) {  // the colour and its terms (docs/SCENES.md#terms)
         // One sample at a time: each sample's `tests` term counts its own tests.
         TermOut term_out{image_of(out), *control.terms};
-        counts = sample_image(
-            settings.render.antialias, w, h, control,
-            [&](float x, float y, TraceCounters& c) {
-                const uint64_t before = work_of(c);
-                const TermSample s = tracer.sample_terms(x, y, c);
-                watch_sample(before, c);
-                return s;
-            },
-            term_out, counters, control.aa_mask);
+        const RayColour colour{
+            [&](float x, float y, TraceCounters& c) { return tracer.sample_terms(x, y, c); },
+            nullptr, watch_rays};
+        counts = sample_image(aa, w, h, control, colour, term_out, counters, control.aa_mask);
     } else {
         // The colour, by one engine for the whole render: the batch engine, or the reference
         // where the sampler asks for one point at a time (adaptive antialiasing). The same bits
         // either way.
-        struct Colour {
-            const Whitted& tracer;
-            const BatchTracer* batch_tracer;  ///< null: the reference for every sample
-            const decltype(watch_rays)& watch;
-            Rgb operator()(float x, float y, TraceCounters& c) const {
-                if (batch_tracer) {
-                    Rgb s;
-                    batch(&x, &y, 1, c, &s);
-                    return s;
-                }
-                const uint64_t before = work_of(c);
-                const Rgb s = tracer.sample(x, y, c);
-                watch(work_of(c) - before);
-                return s;
-            }
-            void batch(const float* xs, const float* ys, int n, TraceCounters& c, Rgb* o) const {
-                if (!batch_tracer) {
-                    for (int k = 0; k < n; ++k) o[k] = (*this)(xs[k], ys[k], c);
-                    return;
-                }
-                uint64_t rays[64];
-                for (int first = 0; first < n; first += 64) {
-                    const int m = std::min(64, n - first);
-                    batch_tracer->samples(xs + first, ys + first, m, c, o + first, rays);
-                    for (int k = 0; k < m; ++k) watch(rays[k]);
-                }
-            }
-        };
-        const bool one_at_a_time = settings.render.antialias.mode == AaMode::adaptive;
-        const Colour colour{tracer, one_at_a_time ? nullptr : &batch, watch_rays};
-        counts = sample_image(settings.render.antialias, w, h, control, colour, out, counters,
-                              control.aa_mask);
+        const BatchTracer* engine = aa.mode == AaMode::adaptive ? nullptr : &batch;
+        const RayColour colour{
+            [&](float x, float y, TraceCounters& c) { return tracer.sample(x, y, c); }, engine,
+            watch_rays};
+        counts = sample_image(aa, w, h, control, colour, out, counters, control.aa_mask);
     }
     for (const TraceCounters& c : counters) {
         stats.rays_primary += c.primary;

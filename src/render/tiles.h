@@ -1,15 +1,12 @@
-// The tiles the samplers work in: their size, their order, the region a render computes, what
-// a work item counted, and progress by pixels finished.
+// The tiles the samplers work in: their size, their rectangles, their order, the region a render
+// computes, and what a tile counted.
 #pragma once
 
 #include <algorithm>
-#include <atomic>
-#include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "render/render.h"
-#include "render/work_items.h"
 
 namespace luz {
 
@@ -26,75 +23,11 @@ struct SamplerCounts {
 
 /// Side of the square tiles the samplers work in (pixels).
 inline constexpr int kSamplerTile = 16;
-/// Samples of a tile taken together (sample_points()) when a tile has no antialiasing, in row
-/// order (four rows of a whole tile): the batch whose ray trees the ray tracer traces side by
-/// side (BatchTracer::samples()). Progress moves by these runs.
-inline constexpr int kSamplerRun = 64;
-/// The work (work_of(): rays, for the ray tracer) a pixel's samples take on average above which
-/// the pixels after them are taken one at a time, so that progress moves pixel by pixel even
-/// when one pixel takes seconds (an exploding ray tree); a tile's first pixel is taken alone to
-/// find out.
-inline constexpr uint64_t kHeavyPixelWork = 4096;
 
-/// The work a work item's counters have counted so far (rays, for the ray tracer's counters:
-/// render/whitted.h overloads it); progress is reported sooner after costly pixels.
-template <class Counters>
-uint64_t work_of(const Counters&) {
-    return 0;
-}
-
-/// The primary rays a work item's counters have counted (render/whitted.h overloads it): how a
-/// render shared among processes reports each one's share (docs/DISTRIBUTED.md).
-template <class Counters>
-uint64_t primary_rays_of(const Counters&) {
-    return 0;
-}
-
-/// Progress by pixels finished (not only by tiles), reported to RenderControl::progress: each
-/// work item calls pixel() after every pixel; a count is handed over at the end of every
-/// kFlushPixels pixels (a tile's worth), or at once after a pixel whose work (rays) was large,
-/// so that the bar moves even when single pixels take seconds. The shared count is touched
-/// rarely: an atomic add every 16 pixels, its cache line passed between the cores, was 4 % of a
-/// 3200×2400 Whitted render on two cores. With tiles rendered in a scattered order
-/// (tile_order()), the share of pixels done is an unbiased estimate of the share of work.
-class PixelProgress {
-  public:
-    PixelProgress(const RenderControl& control, uint64_t total_pixels)
-        : control_(control), total_(total_pixels ? total_pixels : 1) {}
-
-    /// One work item's reports: a local count, handed over now and then.
-    template <class Counters>
-    struct Item {
-        PixelProgress& p;
-        const Counters& counters;
-        uint64_t pending = 0, work_at_flush = 0;
-
-        void pixel() {
-            ++pending;
-            const uint64_t work = work_of(counters);
-            if (pending >= kFlushPixels || work - work_at_flush >= kFlushWork) {
-                p.add(pending);
-                pending = 0;
-                work_at_flush = work;
-            }
-        }
-        ~Item() {
-            if (pending) p.add(pending);
-        }
-    };
-
-    void add(uint64_t pixels) {
-        const uint64_t done = done_.fetch_add(pixels, std::memory_order_relaxed) + pixels;
-        if (control_.progress) control_.progress(static_cast<double>(done) / total_);
-    }
-
-  private:
-    static constexpr uint64_t kFlushPixels = kSamplerTile * kSamplerTile;  ///< pixels, at most
-    static constexpr uint64_t kFlushWork = 2048;  ///< rays after which a count is handed over
-    const RenderControl& control_;
-    uint64_t total_;
-    alignas(64) std::atomic<uint64_t> done_{0};  ///< on a cache line of its own
-};
+/// The order in which tiles are rendered: a fixed pseudo-random permutation of 0 … count−1
+/// (the same in every run), so that costly regions are spread over the whole render and the
+/// progress bar's time left stays honest. The image does not depend on the order.
+std::vector<size_t> tile_order(size_t count);
 
 /// The pixels a render computes: RenderControl::region (inside the image), or the whole image.
 inline PixelRect render_window(const RenderControl& control, int width, int height) {
@@ -109,9 +42,44 @@ inline PixelRect corner_window(const PixelRect& window, int width, int height) {
     return {window.x0, window.y0, std::min(width, window.x1 + 1), std::min(height, window.y1 + 1)};
 }
 
-/// The order in which tiles are rendered: a fixed pseudo-random permutation of 0 … count−1
-/// (the same in every run), so that costly regions are spread over the whole render and the
-/// progress bar's time left stays honest. The image does not depend on the order.
-std::vector<size_t> tile_order(size_t count);
+/// An image cut into kSamplerTile-square tiles, numbered row by row, and the window (region)
+/// whose pixels a render computes. A pixel's value does not depend on its tile (its samples,
+/// the tent's ring and its corners are computed where needed, at the same points), so the
+/// window's pixels are those of the whole render.
+struct TileGrid {
+    int width, height;
+    PixelRect window;
+    int across;    ///< tiles in a row
+    size_t count;  ///< tiles in the image
+    std::vector<size_t> order = tile_order(count);
+
+    TileGrid(int w, int h, const PixelRect& region)
+        : width(w),
+          height(h),
+          window(region),
+          across((w + kSamplerTile - 1) / kSamplerTile),
+          count(static_cast<size_t>(across) * ((h + kSamplerTile - 1) / kSamplerTile)) {}
+
+    /// Tile t's pixels in the image.
+    PixelRect tile(size_t t) const {
+        const int x0 = static_cast<int>(t % across) * kSamplerTile;
+        const int y0 = static_cast<int>(t / across) * kSamplerTile;
+        return {x0, y0, std::min(width, x0 + kSamplerTile), std::min(height, y0 + kSamplerTile)};
+    }
+    /// Tile t's pixels in the window: the pixels it renders.
+    PixelRect rect(size_t t) const { return tile(t).clipped(window); }
+    /// How many pixels of the window tile t holds.
+    uint64_t pixels(size_t t) const {
+        const PixelRect r = rect(t);
+        return r.empty() ? uint64_t{0} : static_cast<uint64_t>(r.width()) * r.height();
+    }
+    /// The tiles that hold pixels of `within`, in the order they are rendered.
+    std::vector<size_t> within(const PixelRect& r) const {
+        std::vector<size_t> list;
+        for (size_t t : order)
+            if (tile(t).overlaps(r)) list.push_back(t);
+        return list;
+    }
+};
 
 }  // namespace luz

@@ -30,11 +30,11 @@ struct TraceCounters {
 /// share of time spent in intersection (RenderStats::intersect_sampled_seconds).
 inline constexpr uint64_t kTimedSampleEvery = 256;
 
-/// Rays traced so far (all kinds): the work the samplers' progress counts (render/sampler.h).
+/// Rays traced so far (all kinds): the cost RayColour reports to the samplers
+/// (render/ray_colour.h).
 inline uint64_t work_of(const TraceCounters& c) {
     return c.primary + c.shadow + c.reflection + c.refraction;
 }
-inline uint64_t primary_rays_of(const TraceCounters& c) { return c.primary; }
 
 /// A sample tracing more rays than this means an exploding ray tree (the render warns once).
 inline constexpr uint64_t kExplodingTreeRays = 4096;

@@ -102,8 +102,9 @@ TEST_F(HeavyScene, SigintStopsAnExplodingRayTreeWithinASecond) {
 
 TEST_F(HeavyScene, ProgressMovesWithinATileAndTheExplosionIsNamedOnce) {
     // One 16×16 tile: progress by finished tiles would show only 0 % and 100 %, and by runs of
-    // 64 pixels (kSamplerRun) at most three values between; heavy pixels go one at a time
-    // (kHeavyPixelWork), and the bar (drawn at most every 0.1 s) moves through a second or more.
+    // 64 pixels (kRaysRun, render/ray_colour.h) at most three values between; heavy pixels go
+    // one at a time (kHeavySampleRays), and the bar (drawn at most every 0.1 s) moves through a
+    // second or more.
     const RunResult r = run_luz_on_terminal({"render", kScene, "--width", "16", "--height", "16",
                                              "--set", "render.max_depth=17", "-o", "out.png"},
                                             dir_);
