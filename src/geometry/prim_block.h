@@ -36,11 +36,11 @@ struct alignas(16) PrimBlock {
     /// Lanes holding triangles (bit k for lane k): a triangle number is below 2³¹
     /// (build_bvh() checks), the markers above have the top bit set, so the lanes are those
     /// that are not negative as signed integers — one comparison.
-    unsigned triangle_lanes() const { return lane_bits4(triangles() >= lane4i(0)); }
+    unsigned triangle_lanes() const { return lane_bits(triangles() >= lane4i(0)); }
     /// Lanes holding shapes around an axis (pre-tested by axis_lanes_missed()).
-    unsigned axis_lanes() const { return lane_bits4(triangles() == lane4i(kAroundAxis)); }
+    unsigned axis_lanes() const { return lane_bits(triangles() == lane4i(kAroundAxis)); }
     /// Lanes holding world-form spheres.
-    unsigned sphere_lanes() const { return lane_bits4(triangles() == lane4i(kSphere)); }
+    unsigned sphere_lanes() const { return lane_bits(triangles() == lane4i(kSphere)); }
     /// The sphere lanes `used` as sphere_lanes_roots() takes them.
     SphereLanes spheres(unsigned used) const {
         return {v[0][0], v[0][1], v[0][2], v[1][0], v[1][1], used};
@@ -78,8 +78,8 @@ inline unsigned intersect_triangles4(const WatertightRay& r, const PrimBlock& b,
     const Lane4i hit = intersect_triangle_lanes(x, y, z, lanes4(r.ox), lanes4(r.oy), lanes4(r.oz),
                                                 lanes4(r.Sx), lanes4(r.Sy), lanes4(r.Sz),
                                                 lanes4(t_min), lanes4(t_max), t, b1, b2, defer);
-    scalar = lane_bits4(defer);
-    return lane_bits4(hit) & ~scalar;
+    scalar = lane_bits(defer);
+    return lane_bits(hit) & ~scalar;
 }
 
 /// The lanes `lanes` (axis lanes of b) whose shape the line of r surely misses. Lane k holds a
@@ -111,7 +111,7 @@ inline unsigned intersect_triangles4(const WatertightRay& r, const PrimBlock& b,
     const Lane4f slack = row(2, 1) * lanes4(d1) * (lanes4(o1) + row(2, 2));
     const Lane4f aq = q < 0 ? -q : q;
     const Lane4f m = aq - slack;
-    return lane_bits4((m > 0) & (m * m > row(2, 0) * nn)) & lanes;
+    return lane_bits((m > 0) & (m * m > row(2, 0) * nn)) & lanes;
 }
 
 }  // namespace luz

@@ -99,8 +99,7 @@ bool nearest_hit_direct(const BuiltScene& scene, const Ray& r, float t_min, floa
 
 void nearest_hits_direct(const BuiltScene& scene, const Ray* rays, int n, float t_min, float t_max,
                          Hit* hits, bool* found, IntersectCounters& counters) {
-#if defined(__SSE2__)
-    using F = Float4;
+    using F = Lane4f;
     constexpr int kLanes = 4;
     for (int first = 0; first < n; first += kLanes) {
         const Ray* r = rays + first;
@@ -114,7 +113,7 @@ void nearest_hits_direct(const BuiltScene& scene, const Ray* rays, int n, float 
         const Ray& r2 = r[m > 2 ? 2 : 0];
         const Ray& r3 = r[m > 3 ? 3 : 0];
         const auto lanes_of = [&](const Vec3 Ray::*v, int c) {
-            return F(_mm_setr_ps((r0.*v)[c], (r1.*v)[c], (r2.*v)[c], (r3.*v)[c]));
+            return F{(r0.*v)[c], (r1.*v)[c], (r2.*v)[c], (r3.*v)[c]};
         };
         const Lane3<F> org{lanes_of(&Ray::origin, 0), lanes_of(&Ray::origin, 1),
                            lanes_of(&Ray::origin, 2)};
@@ -123,35 +122,34 @@ void nearest_hits_direct(const BuiltScene& scene, const Ray* rays, int n, float 
         const F a = dot(dir, dir);  // |d|², as world_sphere_roots() rounds it
         // A ray with |d|² below the pre-test's range, 0 or NaN takes world_sphere_roots()'s
         // other paths: such a packet goes ray by ray.
-        const unsigned usual = static_cast<unsigned>(
-            _mm_movemask_ps(_mm_cmpge_ps(a.v, F(ray_sphere::kMinPreTestA).v)));
+        const unsigned usual = lane_bits(lane_ge(a, lanes4(ray_sphere::kMinPreTestA)));
         if ((usual & used) != used) {
             for (int l = 0; l < m; ++l)
                 found[first + l] =
                     nearest_hit_direct(scene, r[l], t_min, t_max, hits[first + l], counters);
             continue;
         }
-        const F inv_a = F(1.0f) / a;
+        const F inv_a = 1.0f / a;
         Best best[kLanes] = {Best(t_max), Best(t_max), Best(t_max), Best(t_max)};
         for (const SphereGroup& g : scene.sphere_groups) {
             for (int s = 0; s < g.count; ++s) {
                 // world_sphere_roots()'s steps, a ray in each lane (sphere_group_roots(): a
                 // sphere in each lane): the same roots, bit for bit.
-                const F rr(g.rr[s]);
-                const Lane3<F> os{org.x - F(g.cx[s]), org.y - F(g.cy[s]), org.z - F(g.cz[s])};
+                const F rr = lanes4(g.rr[s]);
+                const Lane3<F> os{org.x - g.cx[s], org.y - g.cy[s], org.z - g.cz[s]};
                 const ray_sphere::Terms<F> k = ray_sphere::terms(os, dir, rr);
-                const unsigned near = ~ray_sphere::surely_misses(a, k, rr).bits() & used;
+                const unsigned near = ~lane_bits(ray_sphere::surely_misses(a, k, rr)) & used;
                 unsigned slow = 0;
                 if (near != 0) {
-                    slow = ray_sphere::needs_double(k.c, k.oo, rr).bits() & near;
+                    slow = lane_bits(ray_sphere::needs_double(k.c, k.oo, rr)) & near;
                     const F disc = ray_sphere::discriminant(os, dir, k.b, a, inv_a, rr);
-                    const unsigned hit = ~(disc < F(0.0f)).bits() & near & ~slow;
+                    const unsigned hit = ~lane_bits(disc < 0.0f) & near & ~slow;
                     if (hit != 0) {
                         F t0, t1;
                         ray_sphere::roots(k.b, k.c, disc, inv_a, t0, t1);
                         alignas(16) float t0s[kLanes], t1s[kLanes];
-                        t0.store(t0s);
-                        t1.store(t1s);
+                        store_lanes4(t0s, t0);
+                        store_lanes4(t1s, t1);
                         for (unsigned lanes = hit; lanes != 0; lanes &= lanes - 1) {
                             const int l = __builtin_ctz(lanes);
                             float t;  // the root intersect() would choose
@@ -175,10 +173,6 @@ void nearest_hits_direct(const BuiltScene& scene, const Ray* rays, int n, float 
             if (best[l].found) hits[first + l] = best[l].hit;
         }
     }
-#else
-    for (int k = 0; k < n; ++k)
-        found[k] = nearest_hit_direct(scene, rays[k], t_min, t_max, hits[k], counters);
-#endif
 }
 
 float transmittance_direct(const BuiltScene& scene, const Materials& materials, const Ray& r,
@@ -218,32 +212,32 @@ float transmittance_direct(const BuiltScene& scene, const Materials& materials, 
 void transmittances_direct(const BuiltScene& scene, const Materials& materials,
                            const SegmentLanes& s, unsigned active, float* T,
                            IntersectCounters& counters) {
-    // One by one: without SSE2, or with shapes other than world-form spheres and planes.
+    // One by one: with shapes other than world-form spheres and planes.
     const auto one_by_one = [&](unsigned lanes) {
         for (; lanes != 0; lanes &= lanes - 1) {
             const int k = __builtin_ctz(lanes);
             T[k] = transmittance_direct(scene, materials, s.ray(k), 0.0f, s.t_max[k], counters);
         }
     };
-#if defined(__SSE2__)
     if (!scene.direct_others.empty()) return one_by_one(active);
-    using F = Float4;
+    using F = Lane4f;
     constexpr int kLanes = 4;
     for (int first = 0; first < kMaxPacket; first += kLanes) {
         const unsigned mine = (active >> first) & 0xFu;
         if (mine == 0) continue;
         // Lane l holds segment first + l; the lanes not in `mine` hold whatever the caller put
         // there and are never reported.
-        const Lane3<F> dir{F::load(s.dx + first), F::load(s.dy + first), F::load(s.dz + first)};
+        const Lane3<F> dir{load_lanes4(s.dx + first), load_lanes4(s.dy + first),
+                           load_lanes4(s.dz + first)};
         const F a = dot(dir, dir);  // |d|², as world_sphere_roots() rounds it
         // |d|² below the pre-test's range, 0 or NaN: world_sphere_roots()'s other paths.
-        const unsigned usual = static_cast<unsigned>(
-            _mm_movemask_ps(_mm_cmpge_ps(a.v, F(ray_sphere::kMinPreTestA).v)));
+        const unsigned usual = lane_bits(lane_ge(a, lanes4(ray_sphere::kMinPreTestA)));
         one_by_one((mine & ~usual) << first);
         unsigned open = mine & usual;  // not blocked yet
         if (open == 0) continue;
-        const F inv_a = F(1.0f) / a;
-        const Lane3<F> o{F::load(s.ox + first), F::load(s.oy + first), F::load(s.oz + first)};
+        const F inv_a = 1.0f / a;
+        const Lane3<F> o{load_lanes4(s.ox + first), load_lanes4(s.oy + first),
+                         load_lanes4(s.oz + first)};
         alignas(16) float t_max[kLanes];
         std::copy(s.t_max + first, s.t_max + first + kLanes, t_max);
         Crossings crossings[kLanes];
@@ -255,34 +249,34 @@ void transmittances_direct(const BuiltScene& scene, const Materials& materials,
             alignas(16) float t0s[SphereGroup::kLanes][kLanes], t1s[SphereGroup::kLanes][kLanes];
             unsigned near_any = 0;
             for (int k = 0; k < g.count; ++k) {
-                const F rr(g.rr[k]);
-                const Lane3<F> os{o.x - F(g.cx[k]), o.y - F(g.cy[k]), o.z - F(g.cz[k])};
+                const F rr = lanes4(g.rr[k]);
+                const Lane3<F> os{o.x - g.cx[k], o.y - g.cy[k], o.z - g.cz[k]};
                 const ray_sphere::Terms<F> q = ray_sphere::terms(os, dir, rr);
-                near[k] = ~ray_sphere::surely_misses(a, q, rr).bits() & open;
-                slow[k] = ray_sphere::needs_double(q.c, q.oo, rr).bits() & open;
+                near[k] = ~lane_bits(ray_sphere::surely_misses(a, q, rr)) & open;
+                slow[k] = lane_bits(ray_sphere::needs_double(q.c, q.oo, rr)) & open;
                 hit[k] = 0;
                 near_any |= near[k];
                 const unsigned solve = near[k] & ~slow[k];
                 if (solve == 0) continue;
                 const F disc = ray_sphere::discriminant(os, dir, q.b, a, inv_a, rr);
-                hit[k] = ~(disc < F(0.0f)).bits() & solve;
+                hit[k] = ~lane_bits(disc < 0.0f) & solve;
                 if (hit[k] == 0) continue;
                 F t0, t1;
                 ray_sphere::roots(q.b, q.c, disc, inv_a, t0, t1);
-                t0.store(t0s[k]);
-                t1.store(t1s[k]);
+                store_lanes4(t0s[k], t0);
+                store_lanes4(t1s[k], t1);
             }
             // The segments with a root within (0, t_max) or a sphere to test in double take
             // transmittance_direct()'s steps segment by segment, in its order and with its
             // counts; the others count g.count tests (as it does: a slow sphere is counted
             // only where some sphere of the group is near).
-            const F lo(0.0f), hi = F::load(t_max);
+            const F lo = lanes4(0.0f), hi = load_lanes4(t_max);
             unsigned one_by_one_lanes = 0;
             for (int k = 0; k < g.count; ++k) {
                 if (hit[k] == 0) continue;
-                const F t0 = F::load(t0s[k]), t1 = F::load(t1s[k]);
-                const unsigned within =
-                    ((lo < t0).bits() & (t0 < hi).bits()) | ((lo < t1).bits() & (t1 < hi).bits());
+                const F t0 = load_lanes4(t0s[k]), t1 = load_lanes4(t1s[k]);
+                const unsigned within = (lane_bits(lo < t0) & lane_bits(t0 < hi)) |
+                                        (lane_bits(lo < t1) & lane_bits(t1 < hi));
                 one_by_one_lanes |= within & hit[k];
             }
             unsigned any_slow = 0;
@@ -321,23 +315,19 @@ void transmittances_direct(const BuiltScene& scene, const Materials& materials,
             if (open == 0) break;
             counters.primitive += lane_count(open);
             const Shape& plane = scene.shapes[i];
-            const __m128d nx = _mm_set1_pd(plane.normal.x), ny = _mm_set1_pd(plane.normal.y),
-                          nz = _mm_set1_pd(plane.normal.z);
-            const auto n_o = [&](__m128 x, __m128 y, __m128 z) {  // two lanes, in double
-                return _mm_add_pd(
-                    _mm_add_pd(_mm_mul_pd(nx, _mm_cvtps_pd(x)), _mm_mul_pd(ny, _mm_cvtps_pd(y))),
-                    _mm_mul_pd(nz, _mm_cvtps_pd(z)));
+            const Lane2d nx = lanes2d(plane.normal.x), ny = lanes2d(plane.normal.y),
+                         nz = lanes2d(plane.normal.z);
+            const auto n_o = [&](Lane2d x, Lane2d y, Lane2d z) {  // two lanes, in double
+                return nx * x + ny * y + nz * z;
             };
-            const __m128d offset = _mm_set1_pd(plane.offset);
-            const __m128 num_lo = _mm_cvtpd_ps(_mm_sub_pd(offset, n_o(o.x.v, o.y.v, o.z.v)));
-            const __m128 num_hi = _mm_cvtpd_ps(
-                _mm_sub_pd(offset, n_o(_mm_movehl_ps(o.x.v, o.x.v), _mm_movehl_ps(o.y.v, o.y.v),
-                                       _mm_movehl_ps(o.z.v, o.z.v))));
-            const F num(_mm_movelh_ps(num_lo, num_hi));
-            const F n_d =
-                F(plane.normal.x) * dir.x + F(plane.normal.y) * dir.y + F(plane.normal.z) * dir.z;
+            const Lane2d offset = lanes2d(plane.offset);
+            const F num = lanes_float(
+                offset - n_o(lanes_low_double(o.x), lanes_low_double(o.y), lanes_low_double(o.z)),
+                offset -
+                    n_o(lanes_high_double(o.x), lanes_high_double(o.y), lanes_high_double(o.z)));
+            const F n_d = plane.normal.x * dir.x + plane.normal.y * dir.y + plane.normal.z * dir.z;
             const F t = num / n_d;
-            const unsigned within = (F(0.0f) < t).bits() & (t < F::load(t_max)).bits() & open;
+            const unsigned within = lane_bits(0.0f < t) & lane_bits(t < load_lanes4(t_max)) & open;
             for (unsigned lanes = within; lanes != 0; lanes &= lanes - 1) {
                 const int l = __builtin_ctz(lanes);
                 if (!add_crossings(materials, plane.material, 1, crossings[l])) {
@@ -351,9 +341,6 @@ void transmittances_direct(const BuiltScene& scene, const Materials& materials,
             T[first + l] = crossings[l].product();
         }
     }
-#else
-    one_by_one(active);
-#endif
 }
 
 }  // namespace luz::query

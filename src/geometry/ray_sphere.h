@@ -1,16 +1,16 @@
 // The one ray–sphere routine: the roots of |o + t·d|² = ρ² (o the origin relative to the
-// centre), written once over a lane type (lanes.h) — float for world-form spheres and light
-// spheres, double for object space and the float path's fallback, four floats for SphereGroup —
-// so that every caller computes the very same bits.
+// centre), written once over a lane type (math/lanes.h) — float for world-form spheres and light
+// spheres, double for object space and the float path's fallback, four floats (Lane4f) for
+// SphereGroup — so that every caller computes the very same bits.
 #pragma once
 
-#include "geometry/lanes.h"
+#include "math/lanes.h"
 #include "math/ray.h"
 #include "math/vec3.h"
 
 namespace luz {
 
-/// A point or vector of lanes F (float, double or Float4).
+/// A point or vector of lanes F (float, double or Lane4f).
 template <class F>
 struct Lane3 {
     F x, y, z;
@@ -40,7 +40,7 @@ inline Terms<F> terms(const Lane3<F>& o, const Lane3<F>& d, F rr) {
 /// double.
 template <class F>
 inline auto needs_double(F c, F oo, F rr) {
-    return lane_abs(c) < F(0x1p-17f) * lane_max(oo, rr);
+    return lane_abs(c) < 0x1p-17f * lane_max(oo, rr);
 }
 
 /// A division-free test that the line surely misses, for the many rays that do (every ray
@@ -53,7 +53,7 @@ inline constexpr float kMinPreTestA = 0x1p-64f;
 template <class F>
 inline auto surely_misses(F a, const Terms<F>& k, F rr) {
     const F bb = k.b * k.b;
-    return bb - a * k.c < F(-0x1p-12f) * (bb + a * (k.oo + rr));
+    return bb - a * k.c < -0x1p-12f * (bb + a * (k.oo + rr));
 }
 
 /// disc = b² − a·c computed as a·(ρ² − |o − d·(b/a)|²): no cancellation for distant origins

@@ -33,6 +33,29 @@ typedef float Lane8fUnaligned __attribute__((vector_size(32), aligned(4), may_al
     return *static_cast<const Lane8fUnaligned*>(p);
 }
 inline void store_lanes(void* p, Lane8f v) { *static_cast<Lane8fUnaligned*>(p) = v; }
+/// Eight floats at a 32-byte-aligned p (one aligned load).
+[[gnu::always_inline]] inline Lane8f load_aligned_lanes(const float* p) {
+    return *reinterpret_cast<const Lane8f*>(p);
+}
+
+/// What this build's eight lanes do in one instruction, for code that picks its algorithm by
+/// it: eight floats in one register (AVX; else two halves), eight 32-bit integers compared and
+/// their minima and maxima taken in one (AVX2), a·b + c with one rounding (FMA).
+#if defined(__AVX__)
+inline constexpr bool kLane8InOneRegister = true;
+#else
+inline constexpr bool kLane8InOneRegister = false;
+#endif
+#if defined(__AVX2__)
+inline constexpr bool kLane8iInOneRegister = true;
+#else
+inline constexpr bool kLane8iInOneRegister = false;
+#endif
+#if defined(__AVX2__) && defined(__FMA__)
+inline constexpr bool kLaneFusedMultiplyAdd = true;
+#else
+inline constexpr bool kLaneFusedMultiplyAdd = false;
+#endif
 
 // Without AVX, GCC 12 compiles the comparisons of eight-lane vectors, their `?:` and some of
 // their shuffles lane by lane, with scalar compares, branches and stores. The lane code
@@ -203,6 +226,43 @@ template <class Op>
     return lane_select(lane_lt(a, b), a, b);
 #endif
 }
+/// std::max(a, b), std::min(a, b) of 32-bit integers lane by lane (one instruction with AVX2).
+[[gnu::always_inline]] inline Lane8i lane_max(Lane8i a, Lane8i b) {
+#if defined(__AVX2__)
+    return (Lane8i)_mm256_max_epi32((__m256i)a, (__m256i)b);
+#else
+    return lane_select(lane_lt(a, b), b, a);
+#endif
+}
+[[gnu::always_inline]] inline Lane8i lane_min(Lane8i a, Lane8i b) {
+#if defined(__AVX2__)
+    return (Lane8i)_mm256_min_epi32((__m256i)a, (__m256i)b);
+#else
+    return lane_select(lane_lt(b, a), b, a);
+#endif
+}
+/// a·b + c lane by lane with one rounding (std::fma; one instruction with FMA).
+[[gnu::always_inline]] inline Lane8f lane_fmadd(Lane8f a, Lane8f b, Lane8f c) {
+#if defined(__AVX2__) && defined(__FMA__)
+    return (Lane8f)_mm256_fmadd_ps((__m256)a, (__m256)b, (__m256)c);
+#else
+    for (int k = 0; k < kPacketLanes; ++k) c[k] = __builtin_fmaf(a[k], b[k], c[k]);
+    return c;
+#endif
+}
+/// |x|, |x| with the sign of s, std::min(a, b) and std::max(a, b) lane by lane, as math/lane4.h's.
+[[gnu::always_inline]] inline Lane8f lane_abs(Lane8f x) {
+    return (Lane8f)((Lane8i)x & lanes_i(0x7FFFFFFF));
+}
+[[gnu::always_inline]] inline Lane8f lane_copysign(Lane8f x, Lane8f s) {
+    const Lane8i sign = lanes_i(INT32_MIN);
+    return (Lane8f)(((Lane8i)x & ~sign) | ((Lane8i)s & sign));
+}
+[[gnu::always_inline]] inline Lane8f lane_min(Lane8f a, Lane8f b) { return less_or_second(b, a); }
+[[gnu::always_inline]] inline Lane8f lane_max(Lane8f a, Lane8f b) {
+    return greater_or_second(b, a);
+}
+
 /// base[index[k]] in lane k.
 [[gnu::always_inline]] inline Lane8i gather_lanes(const int32_t* base, Lane8i index) {
 #if defined(__AVX2__)

@@ -8,12 +8,9 @@
 #include <span>
 #include <utility>
 
-#if defined(__SSE2__)
-#include <immintrin.h>
-#endif
-
 #include "geometry/bvh.h"
 #include "geometry/wide_bvh.h"
+#include "math/lanes.h"
 
 namespace luz {
 
@@ -85,53 +82,40 @@ inline bool hit_node(const BvhNode& n, const BoxRay& r, float t_min, float t_max
     return t_min <= t_max;
 }
 
-/// A ray prepared for SIMD box tests (SSE2: x, y, z in lanes 0–2). hit_box() gives the very
+/// A ray prepared for box tests on four lanes (x, y, z in lanes 0–2). hit_box() gives the very
 /// result of hit_node(): per axis the near plane is lo or hi by the sign of 1/direction, so
 /// that t_near ≤ t_far without a swap; a NaN (0·∞) loses against t_min or t_max in max/min,
 /// which leaves the interval as it is. Lane 3 of a node (offset, count) is replaced by −∞ and
 /// +∞, so it never counts.
 struct SimdRay {
-#if defined(__SSE2__)
-    __m128 o, inv, sign;
-#else
-    BoxRay box;
-#endif
-    explicit SimdRay(const Ray& r)
-#if !defined(__SSE2__)
-        : box(r)
-#endif
-    {
-#if defined(__SSE2__)
-        o = _mm_setr_ps(r.origin.x, r.origin.y, r.origin.z, 0.0f);
-        inv = _mm_setr_ps(1.0f / r.direction.x, 1.0f / r.direction.y, 1.0f / r.direction.z, 1.0f);
+    Lane4f o, inv;
+    Lane4i sign;
+    explicit SimdRay(const Ray& r) {
+        o = Lane4f{r.origin.x, r.origin.y, r.origin.z, 0.0f};
+        inv = Lane4f{1.0f / r.direction.x, 1.0f / r.direction.y, 1.0f / r.direction.z, 1.0f};
         // all ones where 1/direction is negative (sign bit set, −∞ for a −0 component)
-        sign = _mm_castsi128_ps(_mm_srai_epi32(_mm_castps_si128(inv), 31));
-#endif
+        sign = (Lane4i)inv >> 31;
     }
 };
 
-/// hit_node() on SIMD lanes (see SimdRay).
+/// hit_node() on four lanes (see SimdRay).
 inline bool hit_box(const BvhNode& n, const SimdRay& r, float t_min, float t_max, float& entry) {
-#if defined(__SSE2__)
     constexpr float inf = std::numeric_limits<float>::infinity();
-    const __m128 xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
-    const __m128 lo = _mm_or_ps(_mm_and_ps(_mm_loadu_ps(n.lo), xyz), _mm_setr_ps(0, 0, 0, -inf));
-    const __m128 hi = _mm_or_ps(_mm_and_ps(_mm_loadu_ps(n.hi), xyz), _mm_setr_ps(0, 0, 0, inf));
-    const __m128 near_plane = _mm_or_ps(_mm_and_ps(r.sign, hi), _mm_andnot_ps(r.sign, lo));
-    const __m128 far_plane = _mm_or_ps(_mm_and_ps(r.sign, lo), _mm_andnot_ps(r.sign, hi));
-    __m128 tn = _mm_mul_ps(_mm_sub_ps(near_plane, r.o), r.inv);
-    __m128 tf = _mm_mul_ps(_mm_mul_ps(_mm_sub_ps(far_plane, r.o), r.inv), _mm_set1_ps(kExitScale));
-    tn = _mm_max_ps(tn, _mm_set1_ps(t_min));  // NaN → t_min
-    tf = _mm_min_ps(tf, _mm_set1_ps(t_max));  // NaN → t_max
-    tn = _mm_max_ps(tn, _mm_shuffle_ps(tn, tn, _MM_SHUFFLE(2, 3, 0, 1)));
-    tf = _mm_min_ps(tf, _mm_shuffle_ps(tf, tf, _MM_SHUFFLE(2, 3, 0, 1)));
-    tn = _mm_max_ps(tn, _mm_shuffle_ps(tn, tn, _MM_SHUFFLE(1, 0, 3, 2)));
-    tf = _mm_min_ps(tf, _mm_shuffle_ps(tf, tf, _MM_SHUFFLE(1, 0, 3, 2)));
-    entry = _mm_cvtss_f32(tn);
-    return _mm_comile_ss(tn, tf);
-#else
-    return hit_node(n, r.box, t_min, t_max, entry);
-#endif
+    const Lane4i xyz{-1, -1, -1, 0};
+    const Lane4f lo = (Lane4f)(((Lane4i)load_lanes4(n.lo) & xyz) | (Lane4i)Lane4f{0, 0, 0, -inf});
+    const Lane4f hi = (Lane4f)(((Lane4i)load_lanes4(n.hi) & xyz) | (Lane4i)Lane4f{0, 0, 0, inf});
+    const Lane4f near_plane = lane_select(r.sign, hi, lo);
+    const Lane4f far_plane = lane_select(r.sign, lo, hi);
+    Lane4f tn = (near_plane - r.o) * r.inv;
+    Lane4f tf = (far_plane - r.o) * r.inv * kExitScale;
+    tn = greater_or_second(tn, lanes4(t_min));  // NaN → t_min
+    tf = less_or_second(tf, lanes4(t_max));     // NaN → t_max
+    tn = greater_or_second(tn, __builtin_shufflevector(tn, tn, 1, 0, 3, 2));
+    tf = less_or_second(tf, __builtin_shufflevector(tf, tf, 1, 0, 3, 2));
+    tn = greater_or_second(tn, __builtin_shufflevector(tn, tn, 2, 3, 0, 1));
+    tf = less_or_second(tf, __builtin_shufflevector(tf, tf, 2, 3, 0, 1));
+    entry = tn[0];
+    return tn[0] <= tf[0];
 }
 
 /// Both children of an interior node: bit 0 set if a is hit, bit 1 if b is; their entry
