@@ -31,6 +31,7 @@ def main():
     ap.add_argument("plan", nargs="*", default=["balls:3,4,5", "rings:5,6,7,8,9,10",
                                                 "tree:11,12,13,14"])
     a = ap.parse_args()
+    a.luz = os.path.abspath(a.luz)  # the renders run in a scratch folder
     work = tempfile.mkdtemp(prefix="luz_spd_sizes.")
     n, t = str(a.size), str(a.threads)
     print(f"# {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}; load "
