@@ -42,6 +42,7 @@ if [[ -z "${LUZ:-}" ]]; then
     fi
     LUZ=build/release/luz
 fi
+LUZ=$(realpath "$LUZ")  # the renders run in a scratch folder
 
 work=$(mktemp -d /tmp/luz_spd.XXXXXX)
 trap 'rm -rf "$work"' EXIT

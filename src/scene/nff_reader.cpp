@@ -29,7 +29,27 @@ using obj_text::Tokens;
 /// Most vertices one polygon may announce (far beyond any SPD polygon).
 constexpr double kMaxPolygonVertices = 1e8;
 
-Json json_vec(const Vec3& v) { return Json::array({v.x, v.y, v.z}); }
+/// [x, y, z], and an object's keys in order: built element by element, as an initializer list
+/// would copy each value (and each key–value pair) through temporaries, thousands of times.
+template <class T>
+Json json_array3(T x, T y, T z) {
+    Json a(Json::value_t::array);
+    auto& elements = a.get_ref<Json::array_t&>();
+    elements.reserve(3);
+    elements.emplace_back(x);
+    elements.emplace_back(y);
+    elements.emplace_back(z);
+    return a;
+}
+Json json_vec(const Vec3& v) { return json_array3(v.x, v.y, v.z); }
+template <class... Value>
+Json json_object(std::pair<const char*, Value>... kv) {
+    Json o(Json::value_t::object);
+    auto& members = o.get_ref<Json::object_t&>();
+    members.reserve(sizeof...(kv) + 1);  // and the material add_object() appends
+    (members.emplace_back(kv.first, std::move(kv.second)), ...);
+    return o;
+}
 
 /// The lines that hold a statement: text from `#` on and blank lines are skipped.
 class Statements {
@@ -120,9 +140,9 @@ class NffReader {
         } else if (keyword == "s") {
             float s[4];
             read_numbers(tokens, s, 4, 4, file_, line(), "s");
-            add_object({{"type", "sphere"},
-                        {"center", json_vec({s[0], s[1], s[2]})},
-                        {"radius", std::fabs(s[3])}});
+            add_object(json_object(std::pair{"type", Json("sphere")},
+                                   std::pair{"center", json_vec({s[0], s[1], s[2]})},
+                                   std::pair{"radius", Json(std::fabs(s[3]))}));
         } else if (keyword == "c") {
             cone(tokens);
         } else {
@@ -261,13 +281,12 @@ class NffReader {
                         format_vec(base) + " and " + format_vec(apex));
         }
         if (r0 == r1) {
-            add_object({{"type", "cylinder"},
-                        {"base", json_vec(base)},
-                        {"axis", Json::array({dx / height, dy / height, dz / height})},
-                        {"radius", r0},
-                        {"height", height},
-                        {"caps", false}},
-                       first);
+            add_object(
+                json_object(std::pair{"type", Json("cylinder")}, std::pair{"base", json_vec(base)},
+                            std::pair{"axis", json_array3(dx / height, dy / height, dz / height)},
+                            std::pair{"radius", Json(r0)}, std::pair{"height", Json(height)},
+                            std::pair{"caps", Json(false)}),
+                first);
             return;
         }
         double sign = 1 / height;
@@ -276,13 +295,10 @@ class NffReader {
             std::swap(r0, r1);
             sign = -sign;
         }
-        add_object({{"type", "cone"},
-                    {"base", json_vec(base)},
-                    {"axis", Json::array({sign * dx, sign * dy, sign * dz})},
-                    {"radius", r0},
-                    {"apex_radius", r1},
-                    {"height", height},
-                    {"cap", false}},
+        add_object(json_object(std::pair{"type", Json("cone")}, std::pair{"base", json_vec(base)},
+                               std::pair{"axis", json_array3(sign * dx, sign * dy, sign * dz)},
+                               std::pair{"radius", Json(r0)}, std::pair{"apex_radius", Json(r1)},
+                               std::pair{"height", Json(height)}, std::pair{"cap", Json(false)}),
                    first);
     }
 

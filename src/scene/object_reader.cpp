@@ -50,23 +50,27 @@ std::vector<std::string_view> keys_of(ShapeType t) {
 
 /// The `type` key: one of the shape names of LUZ_SHAPES.
 ShapeType read_type(const Json& j, const std::string& path) {
-    std::string names;
-    for (std::string_view n : kShapeNames) names += (names.empty() ? "" : ", ") + std::string(n);
+    const auto names = [] {  // for the messages only
+        std::string all;
+        for (std::string_view n : kShapeNames) all += (all.empty() ? "" : ", ") + std::string(n);
+        return all;
+    };
     const auto it = j.find("type");
-    if (it == j.end()) fail(path, "missing key \"type\" (one of: " + names + ")");
-    const std::string key = join(path, "type");
-    if (!it->is_string()) fail(key, "expected one of " + names + ", got " + describe(*it));
-    const std::string s = it->get<std::string>();
+    if (it == j.end()) fail(path, "missing key \"type\" (one of: " + names() + ")");
+    if (!it->is_string())
+        fail(join(path, "type"), "expected one of " + names() + ", got " + describe(*it));
+    const std::string& s = it->get_ref<const std::string&>();
     for (std::size_t i = 0; i < std::size(kShapeNames); ++i) {
         if (kShapeNames[i] == s) return static_cast<ShapeType>(i);
     }
-    fail(key, "unknown value " + quote(s) + " (allowed: " + names + ")");
+    fail(join(path, "type"), "unknown value " + quote(s) + " (allowed: " + names() + ")");
 }
 
 /// Reads one key of the shape's table into `o` (absent: the default stays).
 void read_shape_key(const Section& s, const ShapeKey& k, ObjectDesc& o,
                     const std::string& base_dir) {
     const Json* v = s.get(k.name);
+    if (!v && k.kind != ShapeKeyKind::obj_file) return;  // absent: the default stays
     const std::string key = s.key(k.name);
     switch (k.kind) {
         case ShapeKeyKind::point:
