@@ -1,6 +1,6 @@
 // The one ray–sphere routine: the roots of |o + t·d|² = ρ² (o the origin relative to the
 // centre), written once over a lane type (lanes.h) — float for world-form spheres and light
-// spheres, double for object space and the float path's fallback, four floats for SphereGroup —
+// spheres, double for object space and the float path's fallback, four floats for sphere lanes —
 // so that every caller computes the very same bits.
 #pragma once
 

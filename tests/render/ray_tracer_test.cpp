@@ -432,7 +432,7 @@ TEST(Pipelines, PacketsGiveTheBitsAndCountsOfOneRayAtATime) {
             }
             // A packet goes down the BVH nearest child first for the packet, not for each ray:
             // a ray may enter a box it alone would have skipped (more box tests, same hits).
-            if (scene.direct) {
+            if (scene.root_leaf != 0) {
                 EXPECT_EQ(one.tests.bounds, packets.tests.bounds) << what;
             }
         }

@@ -1,0 +1,282 @@
+// A BVH leaf against several rays at once: its world-form sphere lanes met by four rays at a
+// time (nearest_hits_leaf) or four shadow segments at a time (transmittances_leaf), with
+// world_sphere_roots()'s steps lane for lane (ray_sphere.h): the same roots, bit for bit, as the
+// one-ray tests of query_parts.h; every other lane one ray at a time by those tests.
+#include <algorithm>
+
+#include "geometry/query_parts.h"
+
+namespace luz::query {
+
+namespace {
+
+/// The tests a SIMD sphere test counts itself among its `lanes` tests: all but the lanes handed
+/// to the scalar test (`slow`, rare), which counts its own.
+uint64_t tests_besides(int lanes, unsigned slow) {
+    return static_cast<uint64_t>(lanes) - (slow != 0 ? lane_count(slow) : 0);
+}
+
+}  // namespace
+
+void nearest_hits_leaf(const BuiltScene& scene, uint32_t first, uint32_t count, const Ray* rays,
+                       const WatertightRay* w, unsigned active, float t_min, Best* best,
+                       IntersectCounters& counters) {
+    // Each of rays `lanes` against the lanes `prims` of b one ray at a time.
+    const auto one_ray_at_a_time = [&](const PrimBlock& b, unsigned prims, unsigned lanes) {
+        for (; lanes != 0; lanes &= lanes - 1) {
+            const int k = __builtin_ctz(lanes);
+            offer_block(scene, b, prims, rays[k], w[k], t_min, best[k], counters);
+        }
+    };
+#if defined(__SSE2__)
+    using F = Float4;
+    constexpr int kLanes = 4;
+    for (int quad = 0; quad < kMaxPacket; quad += kLanes) {
+        const unsigned mine = (active >> quad) & 0xFu;
+        if (mine == 0) continue;
+        const Ray* r = rays + quad;
+        // Lane l holds ray quad + l if it is in `mine`, else the first of `mine` (never
+        // reported), set from registers (no store forwarding to wait for).
+        const int any = __builtin_ctz(mine);
+        const Ray& r0 = r[(mine & 1u) ? 0 : any];
+        const Ray& r1 = r[(mine & 2u) ? 1 : any];
+        const Ray& r2 = r[(mine & 4u) ? 2 : any];
+        const Ray& r3 = r[(mine & 8u) ? 3 : any];
+        const auto lanes_of = [&](const Vec3 Ray::*v, int c) {
+            return F(_mm_setr_ps((r0.*v)[c], (r1.*v)[c], (r2.*v)[c], (r3.*v)[c]));
+        };
+        const Lane3<F> org{lanes_of(&Ray::origin, 0), lanes_of(&Ray::origin, 1),
+                           lanes_of(&Ray::origin, 2)};
+        const Lane3<F> dir{lanes_of(&Ray::direction, 0), lanes_of(&Ray::direction, 1),
+                           lanes_of(&Ray::direction, 2)};
+        const F a = dot(dir, dir);  // |d|², as world_sphere_roots() rounds it
+        // A ray with |d|² below the pre-test's range, 0 or NaN takes world_sphere_roots()'s
+        // other paths: such rays go one by one.
+        const unsigned usual = static_cast<unsigned>(_mm_movemask_ps(
+                                   _mm_cmpge_ps(a.v, F(ray_sphere::kMinPreTestA).v))) &
+                               mine;
+        const F inv_a = F(1.0f) / a;
+        for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned prims) {
+            const unsigned spheres = b.sphere_lanes() & prims;
+            one_ray_at_a_time(b, prims, (mine & ~usual) << quad);
+            if (prims & ~spheres) one_ray_at_a_time(b, prims & ~spheres, usual << quad);
+            if (usual == 0) return true;
+            for (unsigned left = spheres; left != 0; left &= left - 1) {
+                // world_sphere_roots()'s steps with a ray in each lane: the same roots.
+                const int s = __builtin_ctz(left);
+                const F rr(b.v[1][0][s]);
+                const Lane3<F> os{org.x - F(b.v[0][0][s]), org.y - F(b.v[0][1][s]),
+                                  org.z - F(b.v[0][2][s])};
+                const ray_sphere::Terms<F> k = ray_sphere::terms(os, dir, rr);
+                const unsigned near = ~ray_sphere::surely_misses(a, k, rr).bits() & usual;
+                unsigned slow = 0;
+                if (near != 0) {
+                    slow = ray_sphere::needs_double(k.c, k.oo, rr).bits() & near;
+                    const F disc = ray_sphere::discriminant(os, dir, k.b, a, inv_a, rr);
+                    const unsigned hit = ~(disc < F(0.0f)).bits() & near & ~slow;
+                    if (hit != 0) {
+                        F t0, t1;
+                        ray_sphere::roots(k.b, k.c, disc, inv_a, t0, t1);
+                        alignas(16) float t0s[kLanes], t1s[kLanes];
+                        t0.store(t0s);
+                        t1.store(t1s);
+                        for (unsigned lanes = hit; lanes != 0; lanes &= lanes - 1) {
+                            const int l = __builtin_ctz(lanes);
+                            Best& to = best[quad + l];
+                            float t;  // the root intersect() would choose
+                            if (nearest_root(t0s[l], t1s[l], t_min, to.limit(), t) &&
+                                to.better(t, b.shape[s], 0))
+                                to.take(t, b.shape[s], 0, 0.0f, 0.0f, part_side);
+                        }
+                    }
+                }
+                // one test per ray, a slow one counted by offer_shape()
+                counters.primitive += tests_besides(lane_count(usual), slow);
+                for (unsigned lanes = slow; lanes != 0; lanes &= lanes - 1) {
+                    const int l = __builtin_ctz(lanes);
+                    offer_shape(scene, b.shape[s], r[l], t_min, best[quad + l], counters);
+                }
+            }
+            return true;
+        });
+    }
+#else
+    for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned prims) {
+        one_ray_at_a_time(b, prims, active);
+        return true;
+    });
+#endif
+}
+
+void transmittances_leaf(const BuiltScene& scene, const Materials& materials, uint32_t first,
+                         uint32_t count, const SegmentLanes& s, unsigned active, float* T,
+                         IntersectCounters& counters) {
+    // One by one: without SSE2, or a segment outside the packet test's range.
+    const auto one_by_one = [&](unsigned lanes) {
+        for (; lanes != 0; lanes &= lanes - 1) {
+            const int k = __builtin_ctz(lanes);
+            T[k] = transmittance_bvh(scene, materials, s.ray(k), 0.0f, s.t_max[k], counters);
+        }
+    };
+#if defined(__SSE2__)
+    using F = Float4;
+    constexpr int kLanes = 4;
+    for (int quad = 0; quad < kMaxPacket; quad += kLanes) {
+        const unsigned mine = (active >> quad) & 0xFu;
+        if (mine == 0) continue;
+        // Lane l holds segment quad + l; the lanes not in `mine` hold whatever the caller put
+        // there and are never reported.
+        const Lane3<F> dir{F::load(s.dx + quad), F::load(s.dy + quad), F::load(s.dz + quad)};
+        const F a = dot(dir, dir);  // |d|², as world_sphere_roots() rounds it
+        // |d|² below the pre-test's range, 0 or NaN: world_sphere_roots()'s other paths.
+        const unsigned usual = static_cast<unsigned>(
+            _mm_movemask_ps(_mm_cmpge_ps(a.v, F(ray_sphere::kMinPreTestA).v)));
+        one_by_one((mine & ~usual) << quad);
+        unsigned open = mine & usual;  // not blocked yet
+        if (open == 0) continue;
+        const F inv_a = F(1.0f) / a;
+        const Lane3<F> o{F::load(s.ox + quad), F::load(s.oy + quad), F::load(s.oz + quad)};
+        alignas(16) float t_max[kLanes];
+        std::copy(s.t_max + quad, s.t_max + quad + kLanes, t_max);
+        Crossings crossings[kLanes];
+        const auto block = [&](unsigned l) {
+            T[quad + l] = 0.0f;
+            open &= ~(1u << l);
+        };
+        // As transmittance_bvh(): first the unbounded shapes, planes in world form four
+        // segments at a time (world_root()'s steps lane by lane, n·o in double), the others one
+        // segment at a time; then the leaf's blocks.
+        for (const uint32_t i : scene.unbounded) {
+            if (open == 0) break;
+            const Shape& plane = scene.shapes[i];
+            if (!(plane.world_form && plane.type == ShapeType::plane)) {
+                for (unsigned lanes = open; lanes != 0; lanes &= lanes - 1) {
+                    const int l = __builtin_ctz(lanes);
+                    if (!cross_shape(scene, materials, i, s.ray(quad + l), 0.0f, t_max[l],
+                                     crossings[l], counters))
+                        block(l);
+                }
+                continue;
+            }
+            counters.primitive += lane_count(open);
+            const __m128d nx = _mm_set1_pd(plane.normal.x), ny = _mm_set1_pd(plane.normal.y),
+                          nz = _mm_set1_pd(plane.normal.z);
+            const auto n_o = [&](__m128 x, __m128 y, __m128 z) {  // two lanes, in double
+                return _mm_add_pd(
+                    _mm_add_pd(_mm_mul_pd(nx, _mm_cvtps_pd(x)), _mm_mul_pd(ny, _mm_cvtps_pd(y))),
+                    _mm_mul_pd(nz, _mm_cvtps_pd(z)));
+            };
+            const __m128d offset = _mm_set1_pd(plane.offset);
+            const __m128 num_lo = _mm_cvtpd_ps(_mm_sub_pd(offset, n_o(o.x.v, o.y.v, o.z.v)));
+            const __m128 num_hi = _mm_cvtpd_ps(
+                _mm_sub_pd(offset, n_o(_mm_movehl_ps(o.x.v, o.x.v), _mm_movehl_ps(o.y.v, o.y.v),
+                                       _mm_movehl_ps(o.z.v, o.z.v))));
+            const F num(_mm_movelh_ps(num_lo, num_hi));
+            const F n_d =
+                F(plane.normal.x) * dir.x + F(plane.normal.y) * dir.y + F(plane.normal.z) * dir.z;
+            const F t = num / n_d;
+            const unsigned within = (F(0.0f) < t).bits() & (t < F::load(t_max)).bits() & open;
+            for (unsigned lanes = within; lanes != 0; lanes &= lanes - 1) {
+                const int l = __builtin_ctz(lanes);
+                if (!add_crossings(materials, plane.material, 1, crossings[l])) block(l);
+            }
+        }
+        const PrimBlock* blocks = &scene.bvh_blocks[first / PrimBlock::kLanes];
+        for (uint32_t left = count; left > 0 && open != 0; ++blocks) {  // as for_each_block()
+            const PrimBlock& b = *blocks;
+            const unsigned prims = left >= PrimBlock::kLanes ? 0xFu : (1u << left) - 1;
+            left -= left >= PrimBlock::kLanes ? PrimBlock::kLanes : left;
+            const unsigned spheres = b.sphere_lanes() & prims;
+            if (spheres != prims) {  // a block of other shapes too: one segment at a time
+                for (unsigned lanes = open; lanes != 0; lanes &= lanes - 1) {
+                    const int l = __builtin_ctz(lanes);
+                    const Ray r = s.ray(quad + l);
+                    const WatertightRay w =
+                        scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
+                    if (!cross_block(scene, materials, b, prims, r, w, 0.0f, t_max[l], crossings[l],
+                                     counters))
+                        block(l);
+                }
+                continue;
+            }
+            // The one-ray test of the block's spheres turned round: the four segments against
+            // one sphere at a time, the same steps lane for lane (the same roots). By sphere:
+            // the segments near it, those needing the double path, those with roots.
+            unsigned near[kLanes] = {}, slow[kLanes] = {}, hit[kLanes] = {};
+            alignas(16) float t0s[kLanes][kLanes], t1s[kLanes][kLanes];
+            unsigned near_any = 0;
+            for (unsigned left = spheres; left != 0; left &= left - 1) {
+                const int k = __builtin_ctz(left);
+                const F rr(b.v[1][0][k]);
+                const Lane3<F> os{o.x - F(b.v[0][0][k]), o.y - F(b.v[0][1][k]),
+                                  o.z - F(b.v[0][2][k])};
+                const ray_sphere::Terms<F> q = ray_sphere::terms(os, dir, rr);
+                near[k] = ~ray_sphere::surely_misses(a, q, rr).bits() & open;
+                slow[k] = ray_sphere::needs_double(q.c, q.oo, rr).bits() & open;
+                near_any |= near[k];
+                const unsigned solve = near[k] & ~slow[k];
+                if (solve == 0) continue;
+                const F disc = ray_sphere::discriminant(os, dir, q.b, a, inv_a, rr);
+                hit[k] = ~(disc < F(0.0f)).bits() & solve;
+                if (hit[k] == 0) continue;
+                F t0, t1;
+                ray_sphere::roots(q.b, q.c, disc, inv_a, t0, t1);
+                t0.store(t0s[k]);
+                t1.store(t1s[k]);
+            }
+            // The segments with a root within (0, t_max) or a sphere to test in double take the
+            // one-ray steps segment by segment, with its counts; the others count one test per
+            // sphere (as it does: a slow sphere is counted only where some sphere is near).
+            const F lo(0.0f), hi = F::load(t_max);
+            unsigned one_by_one_lanes = 0, any_slow = 0;
+            for (unsigned left = spheres; left != 0; left &= left - 1) {
+                const int k = __builtin_ctz(left);
+                any_slow |= slow[k];
+                if (hit[k] == 0) continue;
+                const F t0 = F::load(t0s[k]), t1 = F::load(t1s[k]);
+                const unsigned within =
+                    ((lo < t0).bits() & (t0 < hi).bits()) | ((lo < t1).bits() & (t1 < hi).bits());
+                one_by_one_lanes |= within & hit[k];
+            }
+            one_by_one_lanes |= any_slow & near_any;
+            const int n_spheres = lane_count(spheres);
+            counters.primitive +=
+                static_cast<uint64_t>(n_spheres) * lane_count(open & ~one_by_one_lanes);
+            for (unsigned lanes = one_by_one_lanes; lanes != 0; lanes &= lanes - 1) {
+                const int l = __builtin_ctz(lanes);
+                const unsigned bit = 1u << l;
+                unsigned slow_spheres = 0;
+                if (near_any & bit)
+                    for (unsigned left = spheres; left != 0; left &= left - 1) {
+                        const int k = __builtin_ctz(left);
+                        slow_spheres |= ((slow[k] & bit) != 0) << k;
+                    }
+                counters.primitive += tests_besides(n_spheres, slow_spheres);
+                bool blocked = false;
+                for (unsigned left = spheres; left != 0 && !blocked; left &= left - 1) {
+                    const int k = __builtin_ctz(left);
+                    if (!(hit[k] & bit)) continue;
+                    const uint32_t n = roots_within(t0s[k][l], t1s[k][l], 0.0f, t_max[l]);
+                    blocked = n > 0 && !add_crossings(materials, scene.shapes[b.shape[k]].material,
+                                                      n, crossings[l]);
+                }
+                for (unsigned k = slow_spheres; k != 0 && !blocked; k &= k - 1) {
+                    blocked = !cross_shape(scene, materials, b.shape[__builtin_ctz(k)],
+                                           s.ray(quad + l), 0.0f, t_max[l], crossings[l], counters);
+                }
+                if (blocked) block(l);
+            }
+        }
+        for (unsigned lanes = open; lanes != 0; lanes &= lanes - 1) {
+            const int l = __builtin_ctz(lanes);
+            T[quad + l] = crossings[l].product();
+        }
+    }
+#else
+    (void)first;
+    (void)count;
+    one_by_one(active);
+#endif
+}
+
+}  // namespace luz::query
