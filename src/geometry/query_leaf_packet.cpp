@@ -16,11 +16,61 @@ uint64_t tests_besides(int lanes, unsigned slow) {
     return static_cast<uint64_t>(lanes) - (slow != 0 ? lane_count(slow) : 0);
 }
 
+#if defined(__SSE2__)
+/// world_root() of the plane in world form for the four rays of lanes (o, d), lane for lane
+/// the same steps (n·o in double): the same roots.
+[[gnu::always_inline]] inline Float4 plane_roots4(const Shape& plane, const Lane3<Float4>& o,
+                                                  const Lane3<Float4>& d) {
+    using F = Float4;
+    const __m128d nx = _mm_set1_pd(plane.normal.x), ny = _mm_set1_pd(plane.normal.y),
+                  nz = _mm_set1_pd(plane.normal.z);
+    const auto n_o = [&](__m128 x, __m128 y, __m128 z) {  // two lanes, in double
+        return _mm_add_pd(
+            _mm_add_pd(_mm_mul_pd(nx, _mm_cvtps_pd(x)), _mm_mul_pd(ny, _mm_cvtps_pd(y))),
+            _mm_mul_pd(nz, _mm_cvtps_pd(z)));
+    };
+    const __m128d offset = _mm_set1_pd(plane.offset);
+    const __m128 num_lo = _mm_cvtpd_ps(_mm_sub_pd(offset, n_o(o.x.v, o.y.v, o.z.v)));
+    const __m128 num_hi = _mm_cvtpd_ps(
+        _mm_sub_pd(offset, n_o(_mm_movehl_ps(o.x.v, o.x.v), _mm_movehl_ps(o.y.v, o.y.v),
+                               _mm_movehl_ps(o.z.v, o.z.v))));
+    const F num(_mm_movelh_ps(num_lo, num_hi));
+    const F n_d = F(plane.normal.x) * d.x + F(plane.normal.y) * d.y + F(plane.normal.z) * d.z;
+    return num / n_d;
+}
+
+/// offer_unbounded() for the rays r[l] of lanes `mine` of (o, d), each by best[l]: the planes in
+/// world form four rays at a time.
+[[gnu::always_inline]] inline void offer_unbounded4(const BuiltScene& scene, const Ray* r,
+                                                    unsigned mine, const Lane3<Float4>& o,
+                                                    const Lane3<Float4>& d, float t_min, Best* best,
+                                                    IntersectCounters& counters) {
+    for (const uint32_t i : scene.unbounded) {
+        const Shape& s = scene.shapes[i];
+        if (!(s.world_form && s.type == ShapeType::plane)) {
+            for (unsigned lanes = mine; lanes != 0; lanes &= lanes - 1) {
+                const int l = __builtin_ctz(lanes);
+                offer_shape(scene, i, r[l], t_min, best[l], counters);
+            }
+            continue;
+        }
+        counters.primitive += lane_count(mine);
+        alignas(16) float t[4];
+        plane_roots4(s, o, d).store(t);
+        for (unsigned lanes = mine; lanes != 0; lanes &= lanes - 1) {
+            const int l = __builtin_ctz(lanes);
+            if (t[l] > t_min && t[l] < best[l].limit() && best[l].better(t[l], i, 0))
+                best[l].take(t[l], i, 0, 0.0f, 0.0f, part_side);
+        }
+    }
+}
+#endif
+
 }  // namespace
 
 void nearest_hits_leaf(const BuiltScene& scene, uint32_t first, uint32_t count, const Ray* rays,
                        const WatertightRay* w, unsigned active, float t_min, Best* best,
-                       IntersectCounters& counters) {
+                       IntersectCounters& counters, bool unbounded_too) {
     // Each of rays `lanes` against the lanes `prims` of b one ray at a time.
     const auto one_ray_at_a_time = [&](const PrimBlock& b, unsigned prims, unsigned lanes) {
         for (; lanes != 0; lanes &= lanes - 1) {
@@ -56,6 +106,7 @@ void nearest_hits_leaf(const BuiltScene& scene, uint32_t first, uint32_t count, 
                                    _mm_cmpge_ps(a.v, F(ray_sphere::kMinPreTestA).v))) &
                                mine;
         const F inv_a = F(1.0f) / a;
+        if (unbounded_too) offer_unbounded4(scene, r, mine, org, dir, t_min, best + quad, counters);
         for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned prims) {
             const unsigned spheres = b.sphere_lanes() & prims;
             one_ray_at_a_time(b, prims, (mine & ~usual) << quad);
@@ -101,6 +152,10 @@ void nearest_hits_leaf(const BuiltScene& scene, uint32_t first, uint32_t count, 
         });
     }
 #else
+    for (unsigned lanes = unbounded_too ? active : 0u; lanes != 0; lanes &= lanes - 1) {
+        const int k = __builtin_ctz(lanes);
+        offer_unbounded(scene, rays[k], t_min, best[k], counters);
+    }
     for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned prims) {
         one_ray_at_a_time(b, prims, active);
         return true;
@@ -159,22 +214,7 @@ void transmittances_leaf(const BuiltScene& scene, const Materials& materials, ui
                 continue;
             }
             counters.primitive += lane_count(open);
-            const __m128d nx = _mm_set1_pd(plane.normal.x), ny = _mm_set1_pd(plane.normal.y),
-                          nz = _mm_set1_pd(plane.normal.z);
-            const auto n_o = [&](__m128 x, __m128 y, __m128 z) {  // two lanes, in double
-                return _mm_add_pd(
-                    _mm_add_pd(_mm_mul_pd(nx, _mm_cvtps_pd(x)), _mm_mul_pd(ny, _mm_cvtps_pd(y))),
-                    _mm_mul_pd(nz, _mm_cvtps_pd(z)));
-            };
-            const __m128d offset = _mm_set1_pd(plane.offset);
-            const __m128 num_lo = _mm_cvtpd_ps(_mm_sub_pd(offset, n_o(o.x.v, o.y.v, o.z.v)));
-            const __m128 num_hi = _mm_cvtpd_ps(
-                _mm_sub_pd(offset, n_o(_mm_movehl_ps(o.x.v, o.x.v), _mm_movehl_ps(o.y.v, o.y.v),
-                                       _mm_movehl_ps(o.z.v, o.z.v))));
-            const F num(_mm_movelh_ps(num_lo, num_hi));
-            const F n_d =
-                F(plane.normal.x) * dir.x + F(plane.normal.y) * dir.y + F(plane.normal.z) * dir.z;
-            const F t = num / n_d;
+            const F t = plane_roots4(plane, o, dir);
             const unsigned within = (F(0.0f) < t).bits() & (t < F::load(t_max)).bits() & open;
             for (unsigned lanes = within; lanes != 0; lanes &= lanes - 1) {
                 const int l = __builtin_ctz(lanes);
@@ -202,17 +242,19 @@ void transmittances_leaf(const BuiltScene& scene, const Materials& materials, ui
             // The one-ray test of the block's spheres turned round: the four segments against
             // one sphere at a time, the same steps lane for lane (the same roots). By sphere:
             // the segments near it, those needing the double path, those with roots.
-            unsigned near[kLanes] = {}, slow[kLanes] = {}, hit[kLanes] = {};
+            // The block holds spheres only: lanes 0 … n − 1.
+            const int n = lane_count(spheres);
+            unsigned near[kLanes], slow[kLanes], hit[kLanes];
             alignas(16) float t0s[kLanes][kLanes], t1s[kLanes][kLanes];
             unsigned near_any = 0;
-            for (unsigned left = spheres; left != 0; left &= left - 1) {
-                const int k = __builtin_ctz(left);
+            for (int k = 0; k < n; ++k) {
                 const F rr(b.v[1][0][k]);
                 const Lane3<F> os{o.x - F(b.v[0][0][k]), o.y - F(b.v[0][1][k]),
                                   o.z - F(b.v[0][2][k])};
                 const ray_sphere::Terms<F> q = ray_sphere::terms(os, dir, rr);
                 near[k] = ~ray_sphere::surely_misses(a, q, rr).bits() & open;
                 slow[k] = ray_sphere::needs_double(q.c, q.oo, rr).bits() & open;
+                hit[k] = 0;
                 near_any |= near[k];
                 const unsigned solve = near[k] & ~slow[k];
                 if (solve == 0) continue;
@@ -229,8 +271,7 @@ void transmittances_leaf(const BuiltScene& scene, const Materials& materials, ui
             // sphere (as it does: a slow sphere is counted only where some sphere is near).
             const F lo(0.0f), hi = F::load(t_max);
             unsigned one_by_one_lanes = 0, any_slow = 0;
-            for (unsigned left = spheres; left != 0; left &= left - 1) {
-                const int k = __builtin_ctz(left);
+            for (int k = 0; k < n; ++k) {
                 any_slow |= slow[k];
                 if (hit[k] == 0) continue;
                 const F t0 = F::load(t0s[k]), t1 = F::load(t1s[k]);
@@ -239,26 +280,20 @@ void transmittances_leaf(const BuiltScene& scene, const Materials& materials, ui
                 one_by_one_lanes |= within & hit[k];
             }
             one_by_one_lanes |= any_slow & near_any;
-            const int n_spheres = lane_count(spheres);
-            counters.primitive +=
-                static_cast<uint64_t>(n_spheres) * lane_count(open & ~one_by_one_lanes);
+            counters.primitive += static_cast<uint64_t>(n) * lane_count(open & ~one_by_one_lanes);
             for (unsigned lanes = one_by_one_lanes; lanes != 0; lanes &= lanes - 1) {
                 const int l = __builtin_ctz(lanes);
                 const unsigned bit = 1u << l;
                 unsigned slow_spheres = 0;
                 if (near_any & bit)
-                    for (unsigned left = spheres; left != 0; left &= left - 1) {
-                        const int k = __builtin_ctz(left);
-                        slow_spheres |= ((slow[k] & bit) != 0) << k;
-                    }
-                counters.primitive += tests_besides(n_spheres, slow_spheres);
+                    for (int k = 0; k < n; ++k) slow_spheres |= ((slow[k] & bit) != 0) << k;
+                counters.primitive += tests_besides(n, slow_spheres);
                 bool blocked = false;
-                for (unsigned left = spheres; left != 0 && !blocked; left &= left - 1) {
-                    const int k = __builtin_ctz(left);
+                for (int k = 0; k < n && !blocked; ++k) {
                     if (!(hit[k] & bit)) continue;
-                    const uint32_t n = roots_within(t0s[k][l], t1s[k][l], 0.0f, t_max[l]);
-                    blocked = n > 0 && !add_crossings(materials, scene.shapes[b.shape[k]].material,
-                                                      n, crossings[l]);
+                    const uint32_t m = roots_within(t0s[k][l], t1s[k][l], 0.0f, t_max[l]);
+                    blocked = m > 0 && !add_crossings(materials, scene.shapes[b.shape[k]].material,
+                                                      m, crossings[l]);
                 }
                 for (unsigned k = slow_spheres; k != 0 && !blocked; k &= k - 1) {
                     blocked = !cross_shape(scene, materials, b.shape[__builtin_ctz(k)],

@@ -63,19 +63,19 @@ void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_m
     Best best[kPacketLanes] = {Best(t_max), Best(t_max), Best(t_max), Best(t_max),
                                Best(t_max), Best(t_max), Best(t_max), Best(t_max)};
     WatertightRay w[kPacketLanes];
-    for (int k = 0; k < n; ++k) {
-        offer_unbounded(scene, rays[k], t_min, best[k], counters);
-        if (scene.mesh_triangles) w[k] = prepare_watertight(rays[k]);
-    }
     const auto answer = [&] {
         for (int k = 0; k < n; ++k) {
             found[k] = best[k].found;
             if (best[k].found) hits[k] = best[k].hit;
         }
     };
-    if (scene.root_leaf != 0 && scene.mesh_triangles == 0) {  // one leaf of shapes
-        nearest_hits_leaf(scene, 0, scene.root_leaf, rays, w, all, t_min, best, counters);
+    if (scene.root_leaf != 0 && scene.mesh_triangles == 0) {  // one leaf of shapes, and planes
+        nearest_hits_leaf(scene, 0, scene.root_leaf, rays, w, all, t_min, best, counters, true);
         return answer();
+    }
+    for (int k = 0; k < n; ++k) {
+        offer_unbounded(scene, rays[k], t_min, best[k], counters);
+        if (scene.mesh_triangles) w[k] = prepare_watertight(rays[k]);
     }
     WatertightLanes wl;
     const bool lanes_share_axes = scene.mesh_triangles && shared_axes(w, all, wl);

@@ -320,11 +320,12 @@ float transmittance_all(const BuiltScene& scene, const Materials& materials, con
 
 /// The leaf of slots first … first + count − 1 against rays `active` (bit k: rays[k], prepared
 /// for the watertight test in w[k]), each by its Best: the leaf's world-form spheres four rays
-/// at a time, its other lanes one ray at a time (query_leaf_packet.cpp). The same hits and
-/// counts as offer_block() ray by ray.
+/// at a time, its other lanes one ray at a time (query_leaf_packet.cpp); with `unbounded_too`
+/// first the scene's unbounded shapes, planes in world form four rays at a time. The same hits
+/// and counts as offer_unbounded() and offer_block() ray by ray.
 void nearest_hits_leaf(const BuiltScene& scene, uint32_t first, uint32_t count, const Ray* rays,
                        const WatertightRay* w, unsigned active, float t_min, Best* best,
-                       IntersectCounters& counters);
+                       IntersectCounters& counters, bool unbounded_too = false);
 /// transmittance_bvh() of the segments `active` of s over (0, t_max[k]) into T[k] for a scene
 /// whose BVH is the one leaf of slots first … first + count − 1 (BuiltScene::root_leaf): four
 /// segments at a time against each of its world-form spheres and each world-form plane
