@@ -123,8 +123,13 @@ void nearest_hits_leaf(const BuiltScene& scene, uint32_t first, uint32_t count, 
                 unsigned slow = 0;
                 if (near != 0) {
                     slow = ray_sphere::needs_double(k.c, k.oo, rr).bits() & near;
-                    const F disc = ray_sphere::discriminant(os, dir, k.b, a, inv_a, rr);
-                    const unsigned hit = ~(disc < F(0.0f)).bits() & near & ~slow;
+                    // As sphere_lanes_roots() ahead only: outside (c > 0) and moving away
+                    // (b > 0), both roots are ≤ 0, never beyond t_min ≥ 0.
+                    unsigned solve = near & ~slow;
+                    if (t_min >= 0) solve &= ~((F(0.0f) < k.c).bits() & (F(0.0f) < k.b).bits());
+                    const F disc = solve != 0 ? ray_sphere::discriminant(os, dir, k.b, a, inv_a, rr)
+                                              : F(-1.0f);
+                    const unsigned hit = ~(disc < F(0.0f)).bits() & solve;
                     if (hit != 0) {
                         F t0, t1;
                         ray_sphere::roots(k.b, k.c, disc, inv_a, t0, t1);
