@@ -285,8 +285,8 @@ TEST(Refraction, ARayThroughAGlassSphereComesOutAndGoesOn) {
 }
 
 TEST(Pipelines, RaycastEqualsZbufferUpToTessellation) {
-    // docs/SCENES.md: demo:primitives through both pipelines with a fine tessellation agree on at least
-    // 99 % of pixels within 2/255.
+    // docs/SCENES.md: demo:primitives through both pipelines with a fine tessellation agree on at
+    // least 99 % of pixels within 2/255.
     SceneDesc d = load_scene("demo:primitives", {{"render.tessellation", "512"}});
     const SceneDesc dz = d;
     const BuiltScene zb = build_scene(d);
