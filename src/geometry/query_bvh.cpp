@@ -1,6 +1,7 @@
 // BuiltScene queries by the scene's BVH (render.accel = bvh): bounded shapes and mesh triangles in
-// the 8-wide BVH, its leaves' triangles tested four at a time, planes tested apart; ties
-// resolved by Best, crossings counted by material.
+// the 8-wide BVH, its leaves' primitives tested four at a time, planes tested apart; ties
+// resolved by Best, crossings counted by material. A BVH that is one leaf (BuiltScene::root_leaf)
+// is tested without the node loop.
 #include "geometry/query_parts.h"
 
 namespace luz::query {
@@ -8,17 +9,24 @@ namespace luz::query {
 bool nearest_hit_bvh(const BuiltScene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
                      IntersectCounters& counters) {
     Best best(t_max);
-    for (uint32_t i : scene.unbounded) offer_shape(scene, i, r, t_min, best, counters);
+    offer_unbounded(scene, r, t_min, best, counters);
     const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
-    float limit = best.t;
-    scene.bvh.nearest_leaves(
-        r, t_min, limit, counters.bounds, [&](uint32_t first, uint32_t count, float& node_limit) {
-            for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned lanes) {
-                offer_block(scene, b, lanes, r, w, t_min, best, counters);
-                return true;
-            });
-            node_limit = best.t;
+    const auto leaf = [&](uint32_t first, uint32_t count) {
+        for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned lanes) {
+            offer_block(scene, b, lanes, r, w, t_min, best, counters);
+            return true;
         });
+    };
+    if (scene.root_leaf != 0) {
+        leaf(0, scene.root_leaf);
+    } else {
+        float limit = best.t;
+        scene.bvh.nearest_leaves(r, t_min, limit, counters.bounds,
+                                 [&](uint32_t first, uint32_t count, float& node_limit) {
+                                     leaf(first, count);
+                                     node_limit = best.t;
+                                 });
+    }
     if (best.found) hit = best.hit;
     return best.found;
 }
@@ -30,13 +38,15 @@ float transmittance_bvh(const BuiltScene& scene, const Materials& materials, con
         if (!cross_shape(scene, materials, i, r, t_min, t_max, crossings, counters)) return 0.0f;
     }
     const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
-    const bool blocked =
-        scene.bvh.any_leaves(r, t_min, t_max, counters.bounds, [&](uint32_t first, uint32_t count) {
-            return !for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned lanes) {
-                return cross_block(scene, materials, b, lanes, r, w, t_min, t_max, crossings,
-                                   counters);
-            });
+    // whether the leaf of slots first … first + count − 1 blocks r
+    const auto blocks = [&](uint32_t first, uint32_t count) {
+        return !for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned lanes) {
+            return cross_block(scene, materials, b, lanes, r, w, t_min, t_max, crossings, counters);
         });
+    };
+    const bool blocked = scene.root_leaf != 0
+                             ? blocks(0, scene.root_leaf)
+                             : scene.bvh.any_leaves(r, t_min, t_max, counters.bounds, blocks);
     return blocked ? 0.0f : crossings.product();
 }
 

@@ -1,8 +1,9 @@
-// The nearest hits of a packet of rays by the scene's BVH (render.accel = bvh, more than a direct
-// scene): one traversal for up to eight rays (wide_bvh_packet.h); at a leaf, each triangle
+// The nearest hits of a packet of rays by the scene's BVH (render.accel = bvh): one traversal for
+// up to eight rays (wide_bvh_packet.h), none for a BVH that is one leaf; at a leaf, each triangle
 // against the rays that reach it side by side, or (few rays) each ray against the leaf's blocks
-// of four, both with the watertight test's arithmetic lane for lane; ties resolved per ray by
-// Best. Each ray's answer is the one nearest_hit_bvh() gives it.
+// of four, both with the watertight test's arithmetic lane for lane, and a leaf's spheres four
+// rays at a time (query_leaf_packet.cpp); ties resolved per ray by Best. Each ray's answer is
+// the one nearest_hit_bvh() gives it.
 #include "geometry/query_parts.h"
 #include "geometry/ray_packet.h"
 #include "geometry/wide_bvh_packet.h"
@@ -58,13 +59,22 @@ unsigned triangle_lanes(const WatertightLanes& r, const Vec3& p0, const Vec3& p1
 
 void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_min, float t_max,
                       Hit* hits, bool* found, IntersectCounters& counters) {
-    const RayPacket packet(rays, n);
-    const unsigned all = packet.all();
+    const unsigned all = (1u << n) - 1;
     Best best[kPacketLanes] = {Best(t_max), Best(t_max), Best(t_max), Best(t_max),
                                Best(t_max), Best(t_max), Best(t_max), Best(t_max)};
     WatertightRay w[kPacketLanes];
+    const auto answer = [&] {
+        for (int k = 0; k < n; ++k) {
+            found[k] = best[k].found;
+            if (best[k].found) hits[k] = best[k].hit;
+        }
+    };
+    if (scene.root_leaf != 0 && scene.mesh_triangles == 0) {  // one leaf of shapes, and planes
+        nearest_hits_leaf(scene, 0, scene.root_leaf, rays, w, all, t_min, best, counters, true);
+        return answer();
+    }
     for (int k = 0; k < n; ++k) {
-        for (uint32_t i : scene.unbounded) offer_shape(scene, i, rays[k], t_min, best[k], counters);
+        offer_unbounded(scene, rays[k], t_min, best[k], counters);
         if (scene.mesh_triangles) w[k] = prepare_watertight(rays[k]);
     }
     WatertightLanes wl;
@@ -123,29 +133,38 @@ void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_m
             }
         }
     };
-    nearest_packet(scene.bvh, packet, all, t_min, node_limit, counters.bounds,
-                   [&](uint32_t first, uint32_t count, unsigned active) {
-                       // eight lanes for the rays, or four for the primitives: the fewer tests
-                       const uint32_t rays_in = static_cast<uint32_t>(lane_count(active));
-                       const uint32_t blocks = (count + PrimBlock::kLanes - 1) / PrimBlock::kLanes;
-                       // a leaf without triangles: its shapes have no packet test, but its
-                       // sphere and axis lanes meet each ray four at a time
-                       const auto no_triangles = [&] {
-                           return for_each_block(scene, first, count,
-                                                 [&](const PrimBlock& b, unsigned l) {
-                                                     return (b.triangle_lanes() & l) == 0;
-                                                 });
-                       };
-                       if (!lanes_share_axes || rays_in * blocks <= count || no_triangles()) {
-                           one_ray_at_a_time(first, count, active);
-                       } else {
-                           one_primitive_at_a_time(first, count, active);
-                       }
-                   });
-    for (int k = 0; k < n; ++k) {
-        found[k] = best[k].found;
-        if (best[k].found) hits[k] = best[k].hit;
+    const auto leaf = [&](uint32_t first, uint32_t count, unsigned active) {
+        // eight lanes for the rays, or four for the primitives: the fewer tests
+        const uint32_t rays_in = static_cast<uint32_t>(lane_count(active));
+        const uint32_t blocks = (count + PrimBlock::kLanes - 1) / PrimBlock::kLanes;
+        // a leaf without triangles: its shapes have no packet test by primitive, but its
+        // sphere lanes meet four rays at a time, its axis lanes each ray four at a time
+        const auto no_triangles = [&] {
+            return for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned l) {
+                return (b.triangle_lanes() & l) == 0;
+            });
+        };
+        const auto has_spheres = [&] {
+            return !for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned l) {
+                return (b.sphere_lanes() & l) == 0;
+            });
+        };
+        if (lanes_share_axes && rays_in * blocks > count && !no_triangles()) {
+            one_primitive_at_a_time(first, count, active);
+        } else if (rays_in > 1 && has_spheres()) {
+            nearest_hits_leaf(scene, first, count, rays, w, active, t_min, best, counters);
+            for (unsigned left = active; left != 0; left &= left - 1) update(__builtin_ctz(left));
+        } else {
+            one_ray_at_a_time(first, count, active);
+        }
+    };
+    if (scene.root_leaf != 0) {
+        leaf(0, scene.root_leaf, all);
+    } else {
+        const RayPacket packet(rays, n);
+        nearest_packet(scene.bvh, packet, all, t_min, node_limit, counters.bounds, leaf);
     }
+    answer();
 }
 
 }  // namespace luz::query

@@ -1,6 +1,6 @@
 // What the scene-query strategies share (scene_query.h): the nearest-hit tie rule (Best), the
 // transparent crossings of a shadow ray (Crossings), one shape or triangle offered to either,
-// and the strategies' entry points (query_bvh.cpp, query_all.cpp, query_direct.cpp).
+// and the strategies' entry points (query_bvh.cpp, query_all.cpp, query_leaf_packet.cpp).
 #pragma once
 
 #include <cstdint>
@@ -51,6 +51,24 @@ inline void offer_shape(const BuiltScene& scene, uint32_t i, const Ray& r, float
     Hit h;
     if (intersect(scene.shapes[i], r, t_min, best.limit(), h) && best.better(h.t, i, 0)) {
         best.take(h.t, i, 0, h.u, h.v, h.part);
+    }
+}
+
+/// The shapes outside the BVH (BuiltScene::unbounded) against r: a plane in world form by its
+/// root alone (as intersect() finds it), any other by intersect().
+[[gnu::always_inline]] inline void offer_unbounded(const BuiltScene& scene, const Ray& r,
+                                                   float t_min, Best& best,
+                                                   IntersectCounters& counters) {
+    for (const uint32_t i : scene.unbounded) {
+        const Shape& s = scene.shapes[i];
+        if (!(s.world_form && s.type == ShapeType::plane)) {
+            offer_shape(scene, i, r, t_min, best, counters);
+            continue;
+        }
+        ++counters.primitive;
+        const float t = shapes::plane::world_root(s, r);
+        if (t > t_min && t < best.limit() && best.better(t, i, 0))
+            best.take(t, i, 0, 0.0f, 0.0f, part_side);
     }
 }
 
@@ -300,20 +318,20 @@ bool nearest_hit_all(const BuiltScene& scene, const Ray& r, float t_min, float t
 float transmittance_all(const BuiltScene& scene, const Materials& materials, const Ray& r,
                         float t_min, float t_max, IntersectCounters& counters);
 
-/// A small scene without meshes (BuiltScene::direct): shape by shape, world-form spheres four at
-/// a time (query_direct.cpp). prepare_direct() decides `direct` and groups the spheres.
-void prepare_direct(BuiltScene& scene);
-bool nearest_hit_direct(const BuiltScene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
-                        IntersectCounters& counters);
-/// nearest_hit_direct() of n rays, four at a time against each sphere (a packet of camera rays).
-void nearest_hits_direct(const BuiltScene& scene, const Ray* rays, int n, float t_min, float t_max,
-                         Hit* hits, bool* found, IntersectCounters& counters);
-float transmittance_direct(const BuiltScene& scene, const Materials& materials, const Ray& r,
-                           float t_min, float t_max, IntersectCounters& counters);
-/// transmittance_direct() of the segments `active` of s over (0, t_max[k]), four at a time
-/// against each sphere (the shadow rays of a packet).
-void transmittances_direct(const BuiltScene& scene, const Materials& materials,
-                           const SegmentLanes& s, unsigned active, float* T,
-                           IntersectCounters& counters);
+/// The leaf of slots first … first + count − 1 against rays `active` (bit k: rays[k], prepared
+/// for the watertight test in w[k]), each by its Best: the leaf's world-form spheres four rays
+/// at a time, its other lanes one ray at a time (query_leaf_packet.cpp); with `unbounded_too`
+/// first the scene's unbounded shapes, planes in world form four rays at a time. The same hits
+/// and counts as offer_unbounded() and offer_block() ray by ray.
+void nearest_hits_leaf(const BuiltScene& scene, uint32_t first, uint32_t count, const Ray* rays,
+                       const WatertightRay* w, unsigned active, float t_min, Best* best,
+                       IntersectCounters& counters, bool unbounded_too = false);
+/// transmittance_bvh() of the segments `active` of s over (0, t_max[k]) into T[k] for a scene
+/// whose BVH is the one leaf of slots first … first + count − 1 (BuiltScene::root_leaf): four
+/// segments at a time against each of its world-form spheres and each world-form plane
+/// (query_leaf_packet.cpp).
+void transmittances_leaf(const BuiltScene& scene, const Materials& materials, uint32_t first,
+                         uint32_t count, const SegmentLanes& s, unsigned active, float* T,
+                         IntersectCounters& counters);
 
 }  // namespace luz::query

@@ -1,7 +1,7 @@
 // The one ray–sphere routine: the roots of |o + t·d|² = ρ² (o the origin relative to the
 // centre), written once over a lane type (math/lanes.h) — float for world-form spheres and light
 // spheres, double for object space and the float path's fallback, four floats (Lane4f) for
-// SphereGroup — so that every caller computes the very same bits.
+// sphere lanes — so that every caller computes the very same bits.
 #pragma once
 
 #include "math/lanes.h"

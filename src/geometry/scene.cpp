@@ -121,6 +121,10 @@ void build_bvh(BuiltScene& scene) {
     options.leaf_block = PrimBlock::kLanes;
     options.traversal_cost = kBlockTraversalCost;
     options.max_leaf_size = kBlockMaxLeaf;
+    // Primitives that fit one leaf stay in one: the queries test it without any node
+    // (BuiltScene::root_leaf), a saving the SAH, which prices the visits below the root, misses.
+    if (prims.size() <= kBlockMaxLeaf)
+        options.traversal_cost = std::numeric_limits<float>::infinity();
     scene.bvh = Bvh8::build(boxes, options);
     // Primitives in blocks, leaf by leaf in node order (those with empty bounds, never hit,
     // are left out); the order itself is not kept.
@@ -159,7 +163,14 @@ void build_bvh(BuiltScene& scene) {
         return at;
     });
     scene.has_bvh = true;
-    query::prepare_direct(scene);
+    scene.root_leaf = 0;
+    if (const auto& nodes = scene.bvh.nodes(); nodes.size() == 1) {
+        const Bvh8::Node& root = nodes[0];
+        int used = 0;
+        for (int k = 0; k < 8; ++k)
+            used += root.count[k] > 0 || root.child[k] != Bvh8::Node::kUnused;
+        if (used == 1 && root.count[0] > 0 && root.child[0] == 0) scene.root_leaf = root.count[0];
+    }
     scene.bvh_build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

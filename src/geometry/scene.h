@@ -6,7 +6,6 @@
 
 #include "geometry/prim_block.h"
 #include "geometry/shape.h"
-#include "geometry/sphere_group.h"
 #include "geometry/wide_bvh.h"
 #include "math/huge_pages.h"
 #include "scene/scene_desc.h"
@@ -40,16 +39,11 @@ struct BuiltScene {
     /// (the lanes after its end are padding). On huge pages when large (huge_pages.h).
     HugeVector<PrimBlock> bvh_blocks;
     std::vector<uint32_t> unbounded;  ///< shapes outside the BVH (planes), in scene order
-    bool has_bvh = false;  ///< build_bvh() ran: with render.accel bvh, queries use the BVH or
-                           ///< (`direct`) test the few shapes in order
-    // A scene of at most kDirectShapes shapes and no mesh, which one 8-wide node would hold, is
-    // tested shape by shape instead (`direct`): its spheres in world form four at a time, then
-    // its planes in world form, then the other shapes behind their boxes.
-    static constexpr size_t kDirectShapes = 8;
-    bool direct = false;
-    std::vector<SphereGroup> sphere_groups;
-    std::vector<uint32_t> direct_planes;  ///< planes in world form, in scene order
-    std::vector<uint32_t> direct_others;  ///< the shapes in neither, in scene order
+    bool has_bvh = false;  ///< build_bvh() ran: with render.accel bvh, queries use the BVH
+    /// When the whole BVH is one leaf (its root node's only child: a scene of a few bounded
+    /// shapes), its slot count (the slots 0 … root_leaf − 1); else 0. The queries then test that
+    /// leaf without the node loop.
+    uint32_t root_leaf = 0;
     double bvh_build_seconds = 0;
 
     /// The primitive in slot s of the BVH (a sphere lane as a whole shape: its corners are
@@ -75,8 +69,7 @@ struct BuiltScene {
 BuiltScene build_scene(const SceneDesc& desc);
 
 /// (Re)builds scene.bvh over the scene's shapes and mesh triangles (binned SAH, bvh.h, then
-/// 8-wide, wide_bvh.h) and times it in bvh_build_seconds; for a small scene without meshes
-/// also sets `direct` and groups its spheres (the BVH is built all the same, and unused).
+/// 8-wide, wide_bvh.h), sets root_leaf, and times it in bvh_build_seconds.
 void build_bvh(BuiltScene& scene);
 
 }  // namespace luz

@@ -1,5 +1,5 @@
-// BuiltScene ray queries: the choice of strategy (query_bvh.cpp, query_direct.cpp, query_all.cpp)
-// and the time spent in them; the slab test of a box.
+// BuiltScene ray queries: the choice of strategy (query_bvh.cpp with query_packet.cpp and
+// query_leaf_packet.cpp, or query_all.cpp) and the time spent in them; the slab test of a box.
 #include "geometry/scene_query.h"
 
 #include <algorithm>
@@ -25,11 +25,6 @@ bool hit_bounds(const Bounds3& b, const Ray& r, const Vec3& inv_dir, float t_min
 
 namespace {
 
-/// A small scene without meshes (BuiltScene::direct): tested shape by shape, even with a BVH.
-bool use_direct(const BuiltScene& scene) {
-    return scene.direct && scene.geometry.accel == Accel::bvh;
-}
-
 bool use_bvh(const BuiltScene& scene) {
     return scene.has_bvh && scene.geometry.accel == Accel::bvh;
 }
@@ -51,8 +46,6 @@ auto timed(IntersectCounters& counters, F&& f) {
 bool nearest_hit(const BuiltScene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
                  IntersectCounters& counters) {
     return timed(counters, [&] {
-        if (use_direct(scene))
-            return query::nearest_hit_direct(scene, r, t_min, t_max, hit, counters);
         if (use_bvh(scene)) return query::nearest_hit_bvh(scene, r, t_min, t_max, hit, counters);
         return query::nearest_hit_all(scene, r, t_min, t_max, hit, counters);
     });
@@ -61,9 +54,7 @@ bool nearest_hit(const BuiltScene& scene, const Ray& r, float t_min, float t_max
 void nearest_hits(const BuiltScene& scene, const Ray* rays, int n, float t_min, float t_max,
                   Hit* hits, bool* found, IntersectCounters& counters) {
     timed(counters, [&] {
-        if (use_direct(scene)) {
-            query::nearest_hits_direct(scene, rays, n, t_min, t_max, hits, found, counters);
-        } else if (use_bvh(scene)) {
+        if (use_bvh(scene)) {
             query::nearest_hits_bvh(scene, rays, n, t_min, t_max, hits, found, counters);
         } else {
             for (int k = 0; k < n; ++k)
@@ -75,7 +66,7 @@ void nearest_hits(const BuiltScene& scene, const Ray* rays, int n, float t_min, 
 
 void nearest_hits_scattered(const BuiltScene& scene, const Ray* rays, int n, float t_min,
                             float t_max, Hit* hits, bool* found, IntersectCounters& counters) {
-    if (use_direct(scene)) {
+    if (use_bvh(scene) && scene.root_leaf != 0) {  // no traversal to diverge: side by side
         nearest_hits(scene, rays, n, t_min, t_max, hits, found, counters);
         return;
     }
@@ -86,8 +77,6 @@ void nearest_hits_scattered(const BuiltScene& scene, const Ray* rays, int n, flo
 float transmittance(const BuiltScene& scene, const Materials& materials, const Ray& r, float t_min,
                     float t_max, IntersectCounters& counters) {
     return timed(counters, [&] {
-        if (use_direct(scene))
-            return query::transmittance_direct(scene, materials, r, t_min, t_max, counters);
         if (use_bvh(scene))
             return query::transmittance_bvh(scene, materials, r, t_min, t_max, counters);
         return query::transmittance_all(scene, materials, r, t_min, t_max, counters);
@@ -96,8 +85,8 @@ float transmittance(const BuiltScene& scene, const Materials& materials, const R
 
 void transmittances(const BuiltScene& scene, const Materials& materials, const SegmentLanes& s,
                     unsigned active, float* T, IntersectCounters& counters) {
-    if (use_direct(scene) && !counters.timing) {
-        query::transmittances_direct(scene, materials, s, active, T, counters);
+    if (use_bvh(scene) && scene.root_leaf != 0 && !counters.timing) {
+        query::transmittances_leaf(scene, materials, 0, scene.root_leaf, s, active, T, counters);
         return;
     }
     for (; active != 0; active &= active - 1) {

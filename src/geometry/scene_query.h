@@ -1,9 +1,10 @@
 // Ray queries on a whole scene: the nearest hit (camera, reflected and refracted rays) and the
-// transmittance of a segment (shadow rays). One interface, three strategies, each in its own
-// file and all giving the same bits (one tie rule, crossings multiplied in material order):
-// - query_bvh.cpp: render.accel = bvh — the scene's 8-wide BVH, planes tested apart;
-// - query_direct.cpp: render.accel = bvh and a scene of at most 8 shapes and no mesh
-//   (BuiltScene::direct) — the shapes in order, world-form spheres four at a time;
+// transmittance of a segment (shadow rays), each for one ray or a batch. One interface, two
+// strategies giving the same bits (one tie rule, crossings multiplied in material order):
+// - query_bvh.cpp: render.accel = bvh — the scene's 8-wide BVH, planes tested apart; a batch
+//   goes down it as a packet (query_packet.cpp), its leaves' spheres met by four rays at a
+//   time (query_leaf_packet.cpp); a BVH that is one leaf (a few shapes) is tested without
+//   the node loop;
 // - query_all.cpp: render.accel = none — every shape (behind its bounds) and every triangle.
 // The queries see the scene's objects only: light spheres (the lights' `radius`) are not in
 // it, so they never block shadow rays; the ray tracer tests them for camera and secondary rays
@@ -61,16 +62,16 @@ inline constexpr int kMaxPacket = 8;
 
 /// nearest_hit() of rays[0 … n) (1 ≤ n ≤ kMaxPacket), all over (t_min, t_max): found[k] and
 /// hits[k] (set when found) are bit for bit what nearest_hit() gives rays[k]. With the scene's
-/// BVH the rays go down it together, as a packet (query_packet.cpp); in a small scene tested
-/// shape by shape, four rays meet each sphere at once (query_direct.cpp): for coherent rays,
-/// such as neighbouring camera rays, faster than one by one. Otherwise one by one.
+/// BVH the rays go down it together, as a packet (query_packet.cpp), and four rays meet each
+/// sphere of a leaf at once (query_leaf_packet.cpp): for coherent rays, such as neighbouring
+/// camera rays, faster than one by one. Otherwise one by one.
 void nearest_hits(const BuiltScene& scene, const Ray* rays, int n, float t_min, float t_max,
                   Hit* hits, bool* found, IntersectCounters& counters);
 
 /// nearest_hits() for rays that need not be coherent (the secondary rays of neighbouring
-/// pixels): side by side only in a small scene tested shape by shape, where that never costs
-/// more than one by one; down the BVH one by one (a packet of diverging rays visits the nodes
-/// of all of them). The same bits and counts as nearest_hit() either way.
+/// pixels): side by side only when the BVH is one leaf (BuiltScene::root_leaf), where that
+/// never costs more than one by one; down a deeper BVH one by one (a packet of diverging rays
+/// visits the nodes of all of them). The same bits as nearest_hit() either way.
 void nearest_hits_scattered(const BuiltScene& scene, const Ray* rays, int n, float t_min,
                             float t_max, Hit* hits, bool* found, IntersectCounters& counters);
 
@@ -93,8 +94,9 @@ struct SegmentLanes {
 };
 
 /// transmittance(scene, materials, s.ray(k), 0, s.t_max[k]) into T[k] for each segment k of
-/// `active` (bit k), bit for bit, with the same counts. In a small scene tested shape by shape
-/// (query_direct.cpp) four segments meet each sphere at once; otherwise one by one.
+/// `active` (bit k), bit for bit. When the BVH is one leaf (BuiltScene::root_leaf) four
+/// segments meet each of its spheres and each plane at once (query_leaf_packet.cpp); otherwise
+/// one by one.
 void transmittances(const BuiltScene& scene, const Materials& materials, const SegmentLanes& s,
                     unsigned active, float* T, IntersectCounters& counters);
 

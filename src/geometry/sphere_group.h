@@ -1,13 +1,11 @@
-// Spheres in world form side by side, four to a group, and their roots with one ray for all
-// four at once (Lane4f lanes): how the scene queries test spheres (a small scene's in
-// query_direct.cpp, the BVH leaves' sphere lanes in query_parts.h). Every lane runs the steps of
-// world_sphere_roots() (ray_sphere.h) on Lane4f lanes, the same template code, so its roots are the
-// same bits; a lane that needs that function's double path is flagged, for the caller to test that
-// sphere alone.
+// Spheres in world form side by side, four lanes of them, and their roots with one ray for all
+// four at once (Lane4f lanes): how the scene queries test the sphere lanes of the BVH's leaves
+// (query_parts.h, query_leaf_packet.cpp). Every lane runs the steps of world_sphere_roots()
+// (ray_sphere.h) on Lane4f lanes, the same template code, so its roots are the same bits; a lane
+// that needs that function's double path is flagged, for the caller to test that sphere alone.
 #pragma once
 
 #include <cstdint>
-#include <vector>
 
 #include "geometry/ray_sphere.h"
 #include "geometry/shape.h"
@@ -16,43 +14,16 @@
 
 namespace luz {
 
-/// Up to four spheres in world form (Shape::world_form): centres and squared radii by lane.
-/// Unused lanes repeat the sphere added last and are never reported.
-struct SphereGroup {
-    static constexpr int kLanes = 4;
-    float cx[kLanes], cy[kLanes], cz[kLanes];
-    float rr[kLanes];  ///< radius · radius, as world_sphere_roots() rounds it
-    float radius[kLanes];
-    uint32_t shape[kLanes] = {};  ///< the scene's index of each sphere (set by the scene)
-    int count = 0;                ///< lanes in use
-};
-
-/// One ray against one group: for lane k < count, bit k of `hit` is set where
+/// One ray against four sphere lanes: for each lane k used, bit k of `hit` is set where
 /// world_sphere_roots() returns true (roots t0[k] ≤ t1[k]); bit k of `slow` where it would
 /// take its double path instead (then t0, t1 and the `hit` bit are not set).
 struct SphereGroupRoots {
-    float t0[SphereGroup::kLanes], t1[SphereGroup::kLanes];
+    float t0[4], t1[4];
     unsigned hit = 0, slow = 0;
 };
 
-/// Adds sphere shape s (in world form) to the last group of `groups`, or to a new one; returns
-/// its lane number over all groups (4·group + lane).
-inline int add_to_sphere_groups(std::vector<SphereGroup>& groups, const Shape& s) {
-    if (groups.empty() || groups.back().count == SphereGroup::kLanes) groups.emplace_back();
-    SphereGroup& g = groups.back();
-    for (int k = g.count; k < SphereGroup::kLanes; ++k) {  // this lane and the unused ones
-        g.cx[k] = s.centre.x;
-        g.cy[k] = s.centre.y;
-        g.cz[k] = s.centre.z;
-        g.rr[k] = s.radius * s.radius;
-        g.radius[k] = s.radius;
-    }
-    const int lane = g.count++;
-    return static_cast<int>(groups.size() - 1) * SphereGroup::kLanes + lane;
-}
-
-/// Four spheres in world form by lane, wherever they are stored (a SphereGroup, or the sphere
-/// lanes of a BVH block, prim_block.h): centres, radius · radius and radius; `used` the lanes
+/// Four spheres in world form by lane, wherever they are stored (the sphere lanes of a BVH
+/// block, prim_block.h): centres, radius · radius and radius; `used` the lanes
 /// to test (the others may hold anything).
 struct SphereLanes {
     const float *cx, *cy, *cz, *rr, *radius;
@@ -117,19 +88,6 @@ inline SphereGroupRoots sphere_lanes_roots_one_by_one(const SphereLanes& g, cons
     store_lanes4(out.t0, t0);
     store_lanes4(out.t1, t1);
     return out;
-}
-
-/// The lanes of group g.
-inline SphereLanes lanes_of(const SphereGroup& g) {
-    return {g.cx, g.cy, g.cz, g.rr, g.radius, (1u << g.count) - 1};
-}
-/// sphere_lanes_roots() of group g.
-inline SphereGroupRoots sphere_group_roots_one_by_one(const SphereGroup& g, const Ray& r) {
-    return sphere_lanes_roots_one_by_one(lanes_of(g), r);
-}
-inline SphereGroupRoots sphere_group_roots(const SphereGroup& g, const Ray& r,
-                                           bool ahead_only = false) {
-    return sphere_lanes_roots(lanes_of(g), r, ahead_only);
 }
 
 }  // namespace luz

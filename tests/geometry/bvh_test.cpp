@@ -19,6 +19,7 @@
 #include "geometry/scene.h"
 #include "geometry/scene_query.h"
 #include "geometry_fixtures.h"
+#include "math/lane_count.h"
 
 namespace luz {
 namespace {
@@ -258,7 +259,7 @@ TEST(BvhEqualsBruteForce, CylindersAmongSpheres) {
 TEST(PrimBlock, AxisLanesMissedOnlyWhatTheExactTestMisses) {
     Rng rng(4);
     const BuiltScene scene = build_scene(scene_with(cylinder_field(rng)));
-    ASSERT_FALSE(scene.direct);
+    ASSERT_EQ(scene.root_leaf, 0u);
     std::vector<std::pair<const PrimBlock*, int>> lanes;
     for (const PrimBlock& b : scene.bvh_blocks)
         for (unsigned a = b.axis_lanes(); a != 0; a &= a - 1)
@@ -375,7 +376,7 @@ TEST(PacketQuery, EachRayGetsWhatItGetsAlone) {
     objects.push_back(plane({0, -5, 0}, 2));
     const BuiltScene scene = build_scene(scene_with(objects));
     ASSERT_TRUE(scene.has_bvh);
-    ASSERT_FALSE(scene.direct);
+    ASSERT_EQ(scene.root_leaf, 0u);
 
     std::vector<Ray> rays;
     std::vector<float> t_max;
@@ -414,16 +415,16 @@ TEST(PacketQuery, EachRayGetsWhatItGetsAlone) {
     EXPECT_GT(hits, static_cast<int>(coherent) / 4);
 }
 
-TEST(PacketQuery, SmallScenesAndNoBvhAnswerRayByRay) {
+TEST(PacketQuery, OneLeafScenesAndNoBvhAnswerRayByRay) {
     Rng rng(12);
-    const BuiltScene direct = build_scene(scene_with(
+    const BuiltScene small = build_scene(scene_with(
         {sphere({0, 0, 0}, 1.5f, 1), box({1, -3, 1}, {3, -1, 2}, 2), plane({0, -4, 0}, 2)}));
-    ASSERT_TRUE(direct.direct);
+    ASSERT_NE(small.root_leaf, 0u);
     BuiltScene all = build_scene(scene_with({random_soup(rng, 100, 0), sphere({1, 1, 1}, 1, 0)}));
     all.geometry.accel = Accel::none;
     const std::vector<Ray> rays = camera_rays({0, 1, 9}, {0, 0, 0}, 32, 32, 0.7f);
     const std::vector<float> t_max(rays.size(), std::numeric_limits<float>::infinity());
-    EXPECT_EQ(packet_mismatches(direct, rays, t_max, 8), 0);
+    EXPECT_EQ(packet_mismatches(small, rays, t_max, 8), 0);
     EXPECT_EQ(packet_mismatches(all, rays, t_max, 5), 0);
 }
 
@@ -462,12 +463,26 @@ TEST(BvhEqualsBruteForce, ShadowProductsDoNotDependOnTheOrderOfCrossings) {
     }
 }
 
-TEST(SmallScenes, ShapeByShapeEqualsTheBvhAndTestingEverything) {
-    // At most 8 shapes and no mesh: nearest_hit and transmittance test shape by shape (spheres
-    // in world form without their box) instead of traversing the BVH. Spheres far away, up to
-    // a ninth shape, make the same scene take the BVH; every answer must be the same bits in all
-    // three ways, including ties: two coincident spheres of different materials (the lower one
-    // wins).
+/// The world-form sphere lanes of the scene's BVH blocks.
+int sphere_lanes(const BuiltScene& scene) {
+    int n = 0;
+    for (const PrimBlock& b : scene.bvh_blocks) n += lane_count(b.sphere_lanes());
+    return n;
+}
+
+/// Whether r meets the world-form sphere (centre c, radius) by world_sphere_roots()'s double
+/// path, as a block's sphere lane hands it over.
+bool takes_double_path(const Vec3& c, float radius, const Ray& r) {
+    const float cx[4] = {c.x}, cy[4] = {c.y}, cz[4] = {c.z}, rr[4] = {radius * radius},
+                rad[4] = {radius};
+    return sphere_lanes_roots({cx, cy, cz, rr, rad, 1u}, r).slow != 0;
+}
+
+TEST(OneLeaf, TheLeafAloneEqualsTheTraversedBvhAndTestingEverything) {
+    // A few shapes: the BVH is one leaf (BuiltScene::root_leaf), tested without the node loop
+    // (spheres in world form without any box). Spheres far away make the same scene a BVH of
+    // several leaves, traversed; every answer must be the same bits in all three ways,
+    // including ties: two coincident spheres of different materials (the lower one wins).
     std::vector<ObjectDesc> objects = {sphere({0, 0, 0}, 1.5f, 1), sphere({0, 0, 0}, 1.5f, 2),
                                        sphere({2, 1, -1}, 0.8f, 0)};
     ObjectDesc ellipsoid = sphere({-2, 1, 1}, 1.0f, 1);
@@ -479,20 +494,19 @@ TEST(SmallScenes, ShapeByShapeEqualsTheBvhAndTestingEverything) {
     objects.push_back(torus);
     objects.push_back(plane({0, -4, 0}, 2));
     ASSERT_LE(objects.size(), 8u);
-    const SceneDesc direct_desc = scene_with(objects);
-    const BuiltScene direct = build_scene(direct_desc);
-    while (objects.size() <= BuiltScene::kDirectShapes)
-        objects.push_back(sphere({500, 500, 500}, 1.0f, 0));
+    const SceneDesc leaf_desc = scene_with(objects);
+    const BuiltScene leaf = build_scene(leaf_desc);
+    for (int k = 0; k < 4; ++k) objects.push_back(sphere({500, 500, 500.0f + 3 * k}, 1.0f, 0));
     const BuiltScene bvh = build_scene(scene_with(objects));
-    BuiltScene all = direct;
+    BuiltScene all = leaf;
     all.geometry.accel = Accel::none;
 
     RandomRays gen;
     IntersectCounters cd, cb, ca;
     int hits = 0, ties = 0, partial = 0, mismatches = 0, slow = 0;
-    ASSERT_TRUE(direct.direct);
-    ASSERT_FALSE(bvh.direct);
-    ASSERT_EQ(direct.sphere_groups.size(), 1u);  // the three spheres in world form
+    ASSERT_NE(leaf.root_leaf, 0u);
+    ASSERT_EQ(bvh.root_leaf, 0u);
+    ASSERT_EQ(sphere_lanes(leaf), 3);  // the three spheres in world form
     for (int k = 0; k < 50000; ++k) {
         float t_max;
         Ray r = gen.next(k, t_max);
@@ -501,15 +515,15 @@ TEST(SmallScenes, ShapeByShapeEqualsTheBvhAndTestingEverything) {
             // where its lane hands over to the scalar test's double path
             const float offset = (k & 8) ? 1e-4f : (k & 16) ? -1e-4f : 0.0f;
             r.origin = random_direction(gen.rng) * (1.5f + offset);
-            slow += sphere_group_roots(direct.sphere_groups[0], r).slow != 0;
+            slow += takes_double_path({0, 0, 0}, 1.5f, r);
         }
         Hit h[3];
-        const bool f[3] = {nearest_hit(direct, r, 0.0f, t_max, h[0], cd),
+        const bool f[3] = {nearest_hit(leaf, r, 0.0f, t_max, h[0], cd),
                            nearest_hit(bvh, r, 0.0f, t_max, h[1], cb),
                            nearest_hit(all, r, 0.0f, t_max, h[2], ca)};
-        const float T[3] = {transmittance(direct, direct_desc.materials, r, 0.0f, t_max, cd),
-                            transmittance(bvh, direct_desc.materials, r, 0.0f, t_max, cb),
-                            transmittance(all, direct_desc.materials, r, 0.0f, t_max, ca)};
+        const float T[3] = {transmittance(leaf, leaf_desc.materials, r, 0.0f, t_max, cd),
+                            transmittance(bvh, leaf_desc.materials, r, 0.0f, t_max, cb),
+                            transmittance(all, leaf_desc.materials, r, 0.0f, t_max, ca)};
         for (int w = 1; w < 3; ++w) {
             const bool same =
                 f[0] == f[w] &&
@@ -530,18 +544,19 @@ TEST(SmallScenes, ShapeByShapeEqualsTheBvhAndTestingEverything) {
     EXPECT_GT(ties, 1000);
     EXPECT_GT(partial, 1000);
     EXPECT_GT(slow, 1000);
-    // The direct path tested no box of a world-form sphere; the BVH and `none` did.
+    // The one leaf was tested without a box around a world-form sphere; the BVH and `none`
+    // tested boxes.
     EXPECT_LT(cd.bounds, ca.bounds / 2);
 }
 
-TEST(SmallScenes, ShadowSegmentsFourAtATimeBitForBit) {
-    // transmittances() in a scene tested shape by shape takes four segments at a time against
-    // each sphere in world form and each plane (query_direct.cpp): every transmittance and
+TEST(OneLeaf, ShadowSegmentsFourAtATimeBitForBit) {
+    // transmittances() in a scene whose BVH is one leaf takes four segments at a time against
+    // each sphere in world form and each plane (query_leaf_packet.cpp): every transmittance and
     // every count must be what transmittance() gives segment by segment — five spheres (two
     // groups; opaque, 0.7 and 0.35 transparent, a tie), two planes; segments from a sphere's
     // surface (its double path), through glass (products), into opaque spheres and planes
     // (early ends), of zero or tiny direction (one by one), any subset of eight lanes. Then
-    // the same with an ellipsoid added, which the lanes leave to transmittance().
+    // the same with an ellipsoid added, whose block is left to transmittance().
     std::vector<ObjectDesc> objects = {sphere({0, 0, 0}, 1.5f, 1),  sphere({0, 0, 0}, 1.5f, 2),
                                        sphere({2, 1, -1}, 0.8f, 0), sphere({-2, 2, 0}, 0.6f, 1),
                                        sphere({0, 3, -2}, 1.1f, 2), plane({0, -4, 0}, 1),
@@ -554,8 +569,8 @@ TEST(SmallScenes, ShadowSegmentsFourAtATimeBitForBit) {
         }
         const SceneDesc desc = scene_with(objects);
         const BuiltScene scene = build_scene(desc);
-        ASSERT_TRUE(scene.direct);
-        ASSERT_EQ(scene.sphere_groups.size(), 2u);
+        ASSERT_NE(scene.root_leaf, 0u);
+        ASSERT_EQ(sphere_lanes(scene), 5);
         RandomRays gen;
         IntersectCounters by_lanes, one_by_one;
         int mismatches = 0, partial = 0, blocked = 0, slow = 0;
@@ -568,7 +583,7 @@ TEST(SmallScenes, ShadowSegmentsFourAtATimeBitForBit) {
                 if (k % 3 == 1) {  // from the first sphere's surface, on it or 1e-4 off it
                     const float offset = (k & 4) ? 1e-4f : (batch & 1) ? -1e-4f : 0.0f;
                     r.origin = random_direction(gen.rng) * (1.5f + offset);
-                    slow += sphere_group_roots(scene.sphere_groups[0], r).slow != 0;
+                    slow += takes_double_path({0, 0, 0}, 1.5f, r);
                 }
                 if (batch % 97 == 5 && k == 2) r.direction = Vec3{0.0f};
                 if (batch % 89 == 7 && k == 6) r.direction = r.direction * 0x1p-40f;
@@ -604,9 +619,9 @@ TEST(SmallScenes, ShadowSegmentsFourAtATimeBitForBit) {
     }
 }
 
-TEST(SmallScenes, PacketsTestFourRaysPerSphereBitForBit) {
-    // nearest_hits() in a scene tested shape by shape takes four rays at a time against each
-    // sphere in world form (query_direct.cpp): every hit and every count must be what
+TEST(OneLeaf, PacketsTestFourRaysPerSphereBitForBit) {
+    // nearest_hits() in a scene whose BVH is one leaf takes four rays at a time against each
+    // sphere in world form (query_leaf_packet.cpp): every hit and every count must be what
     // nearest_hit() gives ray by ray — five spheres (two groups) with a tie, an ellipsoid and a
     // box (tested per ray), a plane; camera packets, random rays, rays from a sphere's surface
     // (its double path) and rays of zero or tiny direction (the packet goes ray by ray), packets
@@ -620,8 +635,8 @@ TEST(SmallScenes, PacketsTestFourRaysPerSphereBitForBit) {
     objects.push_back(box({1, -3, 1}, {3, -1, 2}, 2));
     objects.push_back(plane({0, -4, 0}, 2));
     const BuiltScene scene = build_scene(scene_with(objects));
-    ASSERT_TRUE(scene.direct);
-    ASSERT_EQ(scene.sphere_groups.size(), 2u);
+    ASSERT_NE(scene.root_leaf, 0u);
+    ASSERT_EQ(sphere_lanes(scene), 5);
 
     std::vector<Ray> rays;
     for (const Vec3& eye : {Vec3{0, 0, 12}, Vec3{9, 4, -7}, Vec3{0.1f, -3.5f, 0}})
@@ -668,7 +683,7 @@ TEST(SmallScenes, PacketsTestFourRaysPerSphereBitForBit) {
             EXPECT_EQ(by_packet.bounds, by_ray.bounds);
         }
     }
-    for (const Ray& r : rays) slow += sphere_group_roots(scene.sphere_groups[0], r).slow != 0;
+    for (const Ray& r : rays) slow += takes_double_path({0, 0, 0}, 1.5f, r);
     EXPECT_GT(hits, 100000);
     EXPECT_GT(slow, 1000);
 }
@@ -794,7 +809,7 @@ TEST(Bvh, SceneLeavesStartBlocksAndHoldEachPrimitiveOnce) {
         build_scene(scene_with({soup, sphere({0, 0, 0}, 0.5f, 0), bumpy_sphere(40),
                                 sphere({1, 1, 1}, 0.5f, 1), box({2, 2, 2}, {3, 3, 3}, 0)}));
     ASSERT_TRUE(scene.has_bvh);
-    ASSERT_FALSE(scene.direct);
+    ASSERT_EQ(scene.root_leaf, 0u);
     std::vector<std::vector<int>> seen(scene.shapes.size());
     for (size_t i = 0; i < scene.shapes.size(); ++i) {
         const auto& mesh = scene.shapes[i].mesh;

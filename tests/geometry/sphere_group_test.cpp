@@ -1,4 +1,4 @@
-// Sphere groups (geometry/sphere_group.h): four spheres tested at once must give the very bits
+// Sphere lanes (geometry/sphere_group.h): four spheres tested at once must give the very bits
 // world_sphere_roots() gives one by one, and flag exactly the lanes that need its double path.
 #include "geometry/sphere_group.h"
 
@@ -21,7 +21,30 @@ using test::uniform;
 
 bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0; }
 
-TEST(SphereGroup, FourAtOnceEqualsOneByOneBitForBit) {
+/// Up to four spheres in world form by lane, as a BVH block holds them; unused lanes repeat the
+/// sphere added last.
+struct SphereGroup {
+    float cx[4], cy[4], cz[4], rr[4], radius[4];
+    int count = 0;
+    SphereLanes lanes() const { return {cx, cy, cz, rr, radius, (1u << count) - 1}; }
+};
+
+/// Adds sphere s to the last group, or to a new one; its lane number over all groups.
+int add_to_sphere_groups(std::vector<SphereGroup>& groups, const Shape& s) {
+    if (groups.empty() || groups.back().count == 4) groups.emplace_back();
+    SphereGroup& g = groups.back();
+    for (int k = g.count; k < 4; ++k) {
+        g.cx[k] = s.centre.x;
+        g.cy[k] = s.centre.y;
+        g.cz[k] = s.centre.z;
+        g.rr[k] = s.radius * s.radius;
+        g.radius[k] = s.radius;
+    }
+    const int lane = g.count++;
+    return static_cast<int>(groups.size() - 1) * 4 + lane;
+}
+
+TEST(SphereLanes, FourAtOnceEqualsOneByOneBitForBit) {
     Rng rng(11);
     int hits = 0, slow = 0, compared = 0, behind = 0;
     for (int scene = 0; scene < 200; ++scene) {
@@ -50,7 +73,7 @@ TEST(SphereGroup, FourAtOnceEqualsOneByOneBitForBit) {
             if (k == 7) direction = Vec3{0.0f};            // degenerate: all to double
             const Ray r{origin, direction};
             for (const SphereGroup& g : groups) {
-                const SphereGroupRoots fast = sphere_group_roots(g, r);
+                const SphereGroupRoots fast = sphere_lanes_roots(g.lanes(), r);
                 for (int lane = 0; lane < g.count; ++lane) {
                     const unsigned bit = 1u << lane;
                     float t0 = 0, t1 = 0;
@@ -78,7 +101,7 @@ TEST(SphereGroup, FourAtOnceEqualsOneByOneBitForBit) {
                 }
                 // Ahead only (the scene queries): the same lanes and bits, less those whose
                 // roots are both at t ≤ 0, which no query with t_min ≥ 0 takes.
-                const SphereGroupRoots ahead = sphere_group_roots(g, r, true);
+                const SphereGroupRoots ahead = sphere_lanes_roots(g.lanes(), r, true);
                 ASSERT_EQ(ahead.slow, fast.slow);
                 ASSERT_EQ(ahead.hit & ~fast.hit, 0u);
                 for (int lane = 0; lane < g.count; ++lane) {
@@ -95,7 +118,7 @@ TEST(SphereGroup, FourAtOnceEqualsOneByOneBitForBit) {
                 EXPECT_EQ(fast.hit >> g.count, 0u);  // unused lanes are never reported
                 EXPECT_EQ(fast.slow >> g.count, 0u);
                 // the portable version agrees too, and leaves nothing to the caller
-                const SphereGroupRoots one = sphere_group_roots_one_by_one(g, r);
+                const SphereGroupRoots one = sphere_lanes_roots_one_by_one(g.lanes(), r);
                 EXPECT_EQ(one.slow, 0u);
                 EXPECT_EQ(one.hit & ~fast.slow, fast.hit);
             }

@@ -285,8 +285,8 @@ TEST(Refraction, ARayThroughAGlassSphereComesOutAndGoesOn) {
 }
 
 TEST(Pipelines, RaycastEqualsZbufferUpToTessellation) {
-    // docs/SCENES.md: demo:primitives through both pipelines with a fine tessellation agree on at least
-    // 99 % of pixels within 2/255.
+    // docs/SCENES.md: demo:primitives through both pipelines with a fine tessellation agree on at
+    // least 99 % of pixels within 2/255.
     SceneDesc d = load_scene("demo:primitives", {{"render.tessellation", "512"}});
     const SceneDesc dz = d;
     const BuiltScene zb = build_scene(d);
@@ -432,7 +432,7 @@ TEST(Pipelines, PacketsGiveTheBitsAndCountsOfOneRayAtATime) {
             }
             // A packet goes down the BVH nearest child first for the packet, not for each ray:
             // a ray may enter a box it alone would have skipped (more box tests, same hits).
-            if (scene.direct) {
+            if (scene.root_leaf != 0) {
                 EXPECT_EQ(one.tests.bounds, packets.tests.bounds) << what;
             }
         }
