@@ -158,15 +158,15 @@ float unit_float(uint32_t h) { return static_cast<float>(h >> 8) * 0x1p-24f; }
 /// The camera framing a mesh: looking at the centre of its bounds from direction `to_eye`,
 /// y up, the sphere around the centre through the farthest vertex just fitting the image.
 struct Framing {
-    Vec3 center, forward, right, up;
+    Vec3 centre, forward, right, up;
     float radius;
 };
 
 Framing frame_mesh(const Mesh& m) {
     Framing f;
-    f.center = m.bounds.center();
+    f.centre = m.bounds.centre();
     f.radius = 0;
-    for (const Vec3& p : m.positions) f.radius = std::max(f.radius, length(p - f.center));
+    for (const Vec3& p : m.positions) f.radius = std::max(f.radius, length(p - f.centre));
     f.forward = -normalize(Vec3{0.35f, 0.3f, 1.0f});
     f.right = normalize(cross(f.forward, Vec3{0, 1, 0}));
     f.up = cross(f.right, f.forward);
@@ -184,7 +184,7 @@ void tile_pixel(int k, int n, int& x, int& y) {
 /// n×n perspective rays (vertical field of view 40°), unit directions, in 8×8 tiles.
 std::vector<Ray> perspective_rays(const Framing& f, int n) {
     const float half = std::tan(20.0f * 3.14159265f / 180.0f);
-    const Vec3 eye = f.center - f.forward * (f.radius / std::sin(20.0f * 3.14159265f / 180.0f));
+    const Vec3 eye = f.centre - f.forward * (f.radius / std::sin(20.0f * 3.14159265f / 180.0f));
     std::vector<Ray> rays;
     rays.reserve(static_cast<size_t>(n) * n);
     for (int k = 0; k < n * n; ++k) {
@@ -202,7 +202,7 @@ std::vector<Ray> perspective_rays(const Framing& f, int n) {
 std::vector<Ray> orthographic_rays(const Framing& f, int n) {
     std::vector<Ray> rays;
     rays.reserve(static_cast<size_t>(n) * n);
-    const Vec3 plane = f.center - f.forward * (2.0f * f.radius);
+    const Vec3 plane = f.centre - f.forward * (2.0f * f.radius);
     for (int k = 0; k < n * n; ++k) {
         int x, y;
         tile_pixel(k, n, x, y);

@@ -86,11 +86,11 @@ def plot_build(rows, out):
              ("embree_build_ms", "Embree medium", EMBREE, "^"),
              ("embree_high_build_ms", "Embree high", "tab:red", "v")]
     for t, rs in groups.items():
-        for key, label, color, marker in lines:
+        for key, label, colour, marker in lines:
             n, y = series(rs, key)
             if not n:
                 continue
-            kw = dict(color=color, marker=marker, ls=STYLE.get(t, "--"), ms=4,
+            kw = dict(color=colour, marker=marker, ls=STYLE.get(t, "--"), ms=4,
                       label=f"{label}, {t} thread{'s' if t > 1 else ''}")
             ax.plot(n, y, **kw)
             if key != "embree_high_build_ms":  # it would squash the others
@@ -122,14 +122,14 @@ def plot_memory(rows, out):
     fig, ax = plt.subplots(figsize=(7.5, 4.8))
     groups = by_threads(rows)
     rs = groups[max(groups)] if groups else []
-    for key, label, color, marker in [
+    for key, label, colour, marker in [
             ("luz_bytes_per_tri", "luz scene (mesh + BVH with vertex copies)", LUZ, "o"),
             ("luz_bvh8_bytes_per_tri", "luz Bvh8 (mesh + nodes + order)", "tab:cyan", "s"),
             ("embree_bytes_per_tri", "Embree medium (all it allocates)", EMBREE, "^"),
             ("embree_high_bytes_per_tri", "Embree high", "tab:red", "v")]:
         n, y = series(rs, key)
         if n:
-            ax.plot(n, y, color=color, marker=marker, ms=4, label=label)
+            ax.plot(n, y, color=colour, marker=marker, ms=4, label=label)
     triangle_axis(ax)
     ax.set_ylim(bottom=0)
     ax.set_ylabel("memory per triangle (bytes)")
@@ -146,12 +146,12 @@ def plot_rays(rows, out):
     groups = by_threads(rows)
     for ax, kind in zip(axes, ("perspective", "incoherent")):
         for t, rs in groups.items():
-            for key, label, color, marker in [
+            for key, label, colour, marker in [
                     (f"luz_{kind}_mrays", "luz scene query", LUZ, "o"),
                     (f"embree_{kind}_mrays", "Embree rtcIntersect1", EMBREE, "^")]:
                 n, y = series(rs, key)
                 if n:
-                    ax.plot(n, y, color=color, marker=marker, ms=4, ls=STYLE.get(t, "--"),
+                    ax.plot(n, y, color=colour, marker=marker, ms=4, ls=STYLE.get(t, "--"),
                             label=f"{label}, {t} thread{'s' if t > 1 else ''}")
         # guide: rays/s ∝ 1 / log n (traversal cost ∝ log n), through luz's smallest mesh on
         # the most threads

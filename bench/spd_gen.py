@@ -95,11 +95,11 @@ class Writers:
         self.pov.write(f"light_source {{\n    {self.v(p)} color red {c} green {c} blue {c}\n"
                        "} // light\n\n")
 
-    def material(self, color, ka, kd, ks, phong, angle, kt, ior):
+    def material(self, colour, ka, kd, ks, phong, angle, kt, ior):
         """The SPD's surface: Ks mirrors and Phong highlights of width `angle` degrees."""
         cos_a = math.cos(math.radians(angle))
         shine = 100000.0 if angle <= 0.0 else math.log(0.5) / math.log(cos_a)
-        r, gr, b = (g(c) for c in color)
+        r, gr, b = (g(c) for c in colour)
         self.nff.write(f"f {r} {gr} {b} {g(kd)} {g(ks)} {g(shine)} {g(kt)} {g(ior)}\n")
         self.texture += 1
         finish = f"        ambient {g(ka)}\n        diffuse {g(kd)}\n"
@@ -192,7 +192,7 @@ def rings(w, size):
     for n in range(1, 6):
         zm = rotate(2, math.pi * (2.0 * (n - 1) + 1.0) / 5.0)
         dodec += [point(point(dodec[k], xm), zm) for k in range(5)]
-    colors = [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0),
+    colours = [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0),
               (0.0, 1.0, 1.0), (1.0, 0.0, 1.0), (1.0, 1.0, 0.0)]
     for depth in range(size):
         oy = spread * (depth + 1)
@@ -203,7 +203,7 @@ def rings(w, size):
                 for e in range(30):
                     if e % 5 == 0:
                         prev = e + 4
-                        w.material(colors[e // 5], 0.0, 0.5, 0.2, 0.3, 37.0, 0.0, 0.0)
+                        w.material(colours[e // 5], 0.0, 0.5, 0.2, 0.3, 37.0, 0.0, 0.0)
                     else:
                         prev = e - 1
                     base = [dodec[e][0] + ox, dodec[e][1] + oy, dodec[e][2] + oz]

@@ -274,7 +274,7 @@ uniform float n;
 uniform float K;
 uniform vec3 Lp;
 uniform vec3 Il;
-out vec4 color;
+out vec4 colour;
 void main() {
     vec3 N = normalize(N_in);
     if (dot(N, S) < 0.0) N = -N;  // two-sided normals (docs/SCENES.md#geometry)
@@ -288,7 +288,7 @@ void main() {
         float cos_alpha = max(0.0, dot(R, S));
         I += Il / (d + K) * (Kd * N_dot_L + Ks * pow(cos_alpha, n));
     }
-    color = vec4(clamp(I, 0.0, 1.0), 1.0);
+    colour = vec4(clamp(I, 0.0, 1.0), 1.0);
 }
 )";
 

@@ -49,7 +49,7 @@ struct RayTreeNode {
     float A = 1, coefficient = 1;
     Rgb contribution;
     int reflection_child = -1, refraction_child = -1;
-    Rgb color;  ///< the node's total: local + the children's contributions
+    Rgb colour;  ///< the node's total: local + the children's contributions
 };
 
 /// The nodes of one primary ray's tree, parents before children (nodes[0] is the primary).

@@ -49,7 +49,7 @@ std::string ray_tree_json(const RayTree& tree, const SceneDesc& desc, int x, int
     // An exploding tree is recorded up to kRayTreeMaxNodes nodes; its colours are still exact.
     j["truncated"] = tree.truncated;
     j["max_nodes"] = kRayTreeMaxNodes;
-    j["color"] = tree.nodes.empty() ? rgb(pixel) : rgb(tree.nodes[0].color);
+    j["colour"] = tree.nodes.empty() ? rgb(pixel) : rgb(tree.nodes[0].colour);
     Json nodes = Json::array();
     for (const RayTreeNode& n : tree.nodes) {
         Json o;
@@ -96,7 +96,7 @@ std::string ray_tree_json(const RayTree& tree, const SceneDesc& desc, int x, int
             o["coefficient"] = n.coefficient;
             o["contribution"] = rgb(n.contribution);
         }
-        o["color"] = rgb(n.color);
+        o["colour"] = rgb(n.colour);
         nodes.push_back(o);
     }
     j["nodes"] = nodes;

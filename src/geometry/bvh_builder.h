@@ -46,7 +46,7 @@ struct alignas(16) Ref {
         std::memcpy(&i, &reinterpret_cast<const float*>(&lo)[3], 4);
         return i;
     }
-    /// The centroid (lo + hi)/2, as Bounds3::center() computes it (lane 3 zero).
+    /// The centroid (lo + hi)/2, as Bounds3::centre() computes it (lane 3 zero).
     Lane4f centroid() const {
         const Lane4i xyz{-1, -1, -1, 0};  // lane 3 holds the id: keep it out of the arithmetic
         const Lane4f l = Lane4f(Lane4i(lo) & xyz), h = Lane4f(Lane4i(hi) & xyz);

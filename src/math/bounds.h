@@ -20,7 +20,7 @@ struct Bounds3 {
         lo = min(lo, b.lo);
         hi = max(hi, b.hi);
     }
-    constexpr Vec3 center() const { return (lo + hi) * 0.5f; }
+    constexpr Vec3 centre() const { return (lo + hi) * 0.5f; }
     constexpr Vec3 extent() const { return hi - lo; }
     /// The eight corners, bit k of the index choosing hi for axis k.
     constexpr Vec3 corner(int i) const {

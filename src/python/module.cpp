@@ -89,7 +89,7 @@ py::object ray_tree_py(py::handle scene, py::handle px, py::handle py_, py::hand
     run_interruptibly([&](const std::atomic<bool>&) {
         const RayTree tree = ray_tree(s->scene, s->desc, x + 0.5f, y + 0.5f);
         // The pixel's value: its centre sample's colour (the tree's total).
-        const Rgb pixel = tree.nodes.empty() ? Rgb{} : tree.nodes[0].color;
+        const Rgb pixel = tree.nodes.empty() ? Rgb{} : tree.nodes[0].colour;
         text = ray_tree_json(tree, s->desc, x, y, pixel);
     });
     return to_python(nlohmann::ordered_json::parse(text));
@@ -180,11 +180,11 @@ constexpr const char* kRayTreeDoc =
 The ray tree of pixel (px, py) — column px, row py, row 0 on top — traced through the pixel's
 centre, as the viewer (`luz view`) shows it: every ray traced for it with the numbers shade()
 and trace() used. Keys: pixel, pixel_value (the centre sample's colour), pipeline,
-traced_as_raycast (a zbuffer scene is traced as raycast), color, nodes (parents before
+traced_as_raycast (a zbuffer scene is traced as raycast), colour, nodes (parents before
 children: kind, depth, parent, origin, direction, hit, t, object, object_label, material,
 point, normal, flipped, ambient, lights [visibility, distance, cos_theta, cos_alpha, diffuse,
 specular], local, total_internal_reflection, reflection_child, refraction_child, returned, A,
-coefficient, contribution, color).
+coefficient, contribution, colour).
 
 scene, set and the options: as for render().)";
 

@@ -70,7 +70,7 @@ void RayTreeRecorder::secondary(RayKind kind, float coefficient, const Rgb& retu
 Rgb RayTreeRecorder::done(const Rgb& c) {
     last_ = open_.back();
     open_.pop_back();
-    if (last_ >= 0) tree_.nodes[last_].color = c;
+    if (last_ >= 0) tree_.nodes[last_].colour = c;
     return c;
 }
 

@@ -40,7 +40,7 @@ class RayTreeRecorder {
 /// The ray tree of the primary ray through pixel-space point (px, py) — pixel (i, j)'s centre
 /// is (i + 0.5, j + 0.5) — traced by the scene's ray pipeline (Whitted::trace observed by a
 /// RayTreeRecorder). A zbuffer scene is traced as raycast (max depth 0, no shadow rays), which
-/// gives the zbuffer's colour up to tessellation (docs/SCENES.md#models). nodes[0].color is the
+/// gives the zbuffer's colour up to tessellation (docs/SCENES.md#models). nodes[0].colour is the
 /// sample's colour.
 RayTree trace_ray_tree(const BuiltScene& scene, const Settings& settings, float px, float py);
 

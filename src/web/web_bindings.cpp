@@ -161,7 +161,7 @@ EMSCRIPTEN_KEEPALIVE const char* luz_ray_tree(int x, int y) {
     Session& s = session();
     try {
         const RayTree tree = ray_tree(s.scene, s.desc, x + 0.5f, y + 0.5f);
-        const Rgb pixel = tree.nodes.empty() ? Rgb{} : tree.nodes[0].color;
+        const Rgb pixel = tree.nodes.empty() ? Rgb{} : tree.nodes[0].colour;
         return hand_out(ray_tree_json(tree, s.desc, x, y, pixel));
     } catch (const std::exception& e) {
         return hand_out(std::string("{\"error\":\"") + one_line(e.what()) + "\"}");

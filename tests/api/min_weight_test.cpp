@@ -108,7 +108,7 @@ TEST(RayTreeCap, AnExplodingPixelIsRecordedUpToTheCapWithItsExactColour) {
     EXPECT_EQ(tree.nodes.size(), kRayTreeMaxNodes);
     // The colour is traced in full all the same: the render's pixel, bit for bit.
     const Frame f = render(scene, d);
-    EXPECT_EQ(std::memcmp(&tree.nodes[0].color, &f.image.at(16, 12), sizeof(Rgb)), 0);
+    EXPECT_EQ(std::memcmp(&tree.nodes[0].colour, &f.image.at(16, 12), sizeof(Rgb)), 0);
     // A small tree is not cut.
     const SceneDesc m = mirrors({});
     EXPECT_FALSE(ray_tree(build(m), m, 20.5f, 15.5f).truncated);

@@ -462,7 +462,7 @@ TEST(Intersect, MissesAndTheInterval) {
             SCOPED_TRACE(obj.name + " / " + tr.name);
             const Shape s = make_shape(with_transform(obj.desc, tr.affine), 0);
             const Bounds3 b = bounds(s);
-            const Vec3 c = b.center();
+            const Vec3 c = b.centre();
             const float radius = 0.5f * length(b.extent());
             Hit h;
             for (int i = 0; i < 100; ++i) {

@@ -148,9 +148,9 @@ void write_file(const TestFile& file, std::string& out) {
     EXR_CHECK(exr_start_write(&ctxt, "test", EXR_WRITE_FILE_DIRECTLY, &init));
     int part = -1;
     EXR_CHECK(exr_add_part(ctxt, nullptr, file.storage, &part));
-    exr_attr_v2f_t center{};
+    exr_attr_v2f_t centre{};
     EXR_CHECK(exr_initialize_required_attr(ctxt, part, &file.data_window, &file.data_window, 1.0f,
-                                           &center, 1.0f, file.line_order, file.compression));
+                                           &centre, 1.0f, file.line_order, file.compression));
     for (const TestChannel& c : file.channels) {
         EXR_CHECK(exr_add_channel(ctxt, part, c.name.c_str(), c.type, EXR_PERCEPTUALLY_LOGARITHMIC,
                                   c.x_sampling, c.y_sampling));

@@ -184,10 +184,10 @@ def test_ray_tree_is_the_viewer_tree(luz):
     assert tree["pipeline"] == "raytrace"
     nodes = tree["nodes"]
     assert nodes[0]["kind"] == "primary" and nodes[0]["parent"] == -1
-    assert tree["color"] == nodes[0]["color"]
+    assert tree["colour"] == nodes[0]["colour"]
     # the tree's colour is the render's pixel (no antialiasing: the centre sample)
     frame = luz.render(scene)
-    assert np.allclose(frame.image[120, 160], tree["color"], rtol=0, atol=1e-6)
+    assert np.allclose(frame.image[120, 160], tree["colour"], rtol=0, atol=1e-6)
     # a zbuffer scene is traced as raycast
     zb = luz.ray_tree("demo:primitives", 400, 300)
     assert zb["traced_as_raycast"] is True

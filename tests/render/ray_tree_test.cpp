@@ -29,12 +29,12 @@ void expect_adds_up(const RayTree& tree, int i) {
         if (j < 0) continue;
         const RayTreeNode& c = tree.nodes[j];
         EXPECT_EQ(c.parent, i);
-        EXPECT_EQ(c.returned, c.color);
+        EXPECT_EQ(c.returned, c.colour);
         EXPECT_NEAR(c.contribution.x, c.returned.x * c.A * c.coefficient, 1e-6f);
         total += c.contribution;
         expect_adds_up(tree, j);
     }
-    EXPECT_EQ(total, n.color) << "node " << i;
+    EXPECT_EQ(total, n.colour) << "node " << i;
 }
 
 TEST(RayTreeRecording, PrimaryColourIsThePixelsAndTermsAddUp) {
@@ -47,7 +47,7 @@ TEST(RayTreeRecording, PrimaryColourIsThePixelsAndTermsAddUp) {
         for (int x = 0; x < 64; x += 3) {
             const RayTree tree = trace_ray_tree(scene, d, x + 0.5f, y + 0.5f);
             ASSERT_FALSE(tree.nodes.empty());
-            EXPECT_EQ(tree.nodes[0].color, img.at(x, y)) << x << "," << y;
+            EXPECT_EQ(tree.nodes[0].colour, img.at(x, y)) << x << "," << y;
             expect_adds_up(tree, 0);
             with_children += tree.nodes.size() > 1;
         }

@@ -31,10 +31,10 @@ SceneDesc base_scene(int w, int h) {
     return d;
 }
 
-ObjectDesc sphere(Vec3 center, float radius) {
+ObjectDesc sphere(Vec3 centre, float radius) {
     ObjectDesc o;
     o.type = ShapeType::sphere;
-    o.center = center;
+    o.center = centre;
     o.radius = radius;
     return o;
 }
@@ -51,8 +51,8 @@ Image render_desc(const SceneDesc& d, int threads = 1, RenderStats* stats_out = 
 
 bool is_background(const Rgb& c) { return c == Rgb{0.0f, 0.0f, 1.0f}; }
 
-// docs/SCENES.md: "an orthographic sphere lit along the view axis — every covered pixel within 1/255 of
-// the closed form at a fine tessellation".
+// docs/SCENES.md: "an orthographic sphere lit along the view axis — every covered pixel within
+// 1/255 of the closed form at a fine tessellation".
 TEST(Zbuffer, OrthographicSphereMatchesTheClosedFormAtEveryCoveredPixel) {
     SceneDesc d = base_scene(160, 160);
     d.geometry.tessellation = 720;

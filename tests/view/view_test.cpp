@@ -134,11 +134,11 @@ void check_node(const nlohmann::json& nodes, int i, double eps) {
                 EXPECT_NEAR(
                     c(m["returned"], k) * m["A"].get<double>() * m["coefficient"].get<double>(),
                     c(m["contribution"], k), eps);
-                EXPECT_NEAR(c(m["returned"], k), c(m["color"], k), eps);
+                EXPECT_NEAR(c(m["returned"], k), c(m["colour"], k), eps);
                 total += c(m["contribution"], k);
                 check_node(nodes, j, eps);
             }
-            EXPECT_NEAR(total, c(n["color"], k), eps) << "node " << i;
+            EXPECT_NEAR(total, c(n["colour"], k), eps) << "node " << i;
         }
     }
 }
@@ -157,7 +157,7 @@ TEST_F(ViewTest, ClickWritesARayTreeThatAddsUpToThePixel) {
     check_node(nodes, 0, 1e-5);
     for (int k = 0; k < 3; ++k) {
         const double pixel = tree["pixel_value"][k].get<double>();
-        EXPECT_NEAR(nodes[0]["color"][k].get<double>(), pixel, 1.0 / 255);
+        EXPECT_NEAR(nodes[0]["colour"][k].get<double>(), pixel, 1.0 / 255);
     }
     // The value luz render writes for that pixel.
     ASSERT_EQ(run_luz({"render", "demo:whitted", "--width", "160", "--height", "120", "-o",
@@ -168,7 +168,7 @@ TEST_F(ViewTest, ClickWritesARayTreeThatAddsUpToThePixel) {
     const Image ref = read_image((dir_ / "ref.pfm").string());
     for (int k = 0; k < 3; ++k) {
         const float v = k == 0 ? ref.at(98, 70).x : k == 1 ? ref.at(98, 70).y : ref.at(98, 70).z;
-        EXPECT_NEAR(tree["color"][k].get<double>(), v, 1.0 / 255);
+        EXPECT_NEAR(tree["colour"][k].get<double>(), v, 1.0 / 255);
     }
 }
 

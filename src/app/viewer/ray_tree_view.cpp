@@ -57,7 +57,7 @@ void draw_node(const RayTree& tree, const SceneDesc& desc, int index) {
             ImGui::Text("= local%s%s", n.reflection_child >= 0 ? " + reflected" : "",
                         n.refraction_child >= 0 ? " + refracted" : "");
         }
-        text_rgb("colour", n.color);
+        text_rgb("colour", n.colour);
         ImGui::TreePop();
     }
     ImGui::PopID();

@@ -217,7 +217,7 @@ def ray_tree(ctx):
                                     else "C1"})
     tir = 0
     for k, n in enumerate(nodes):
-        col = n.get("color", [0, 0, 0])
+        col = n.get("colour", [0, 0, 0])
         txt = [f"{k}: {n['kind']} → " + (n.get("object_label") or n["hit"])]
         if n["hit"] == "object":
             loc = n.get("local", [0, 0, 0])
@@ -256,4 +256,4 @@ def ray_tree(ctx):
         [("nodes, total internal reflections", f"{len(nodes)}, {tir}"),
          ("root: local + Σ children's contributions = colour (R)",
           f"{root['local'][0]:.4f} + {sum(kids):.4f} = {root['local'][0] + sum(kids):.4f} "
-          f"(luz: {root['color'][0]:.4f}, pixel value {tree['pixel_value'][0]:.4f})")]))
+          f"(luz: {root['colour'][0]:.4f}, pixel value {tree['pixel_value'][0]:.4f})")]))
