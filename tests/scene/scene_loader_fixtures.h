@@ -1,5 +1,5 @@
-// Shared helpers of the scene loader tests: parsing a scene text as scenes/a.json, --set
-// arguments, and comparing vectors.
+// Shared helpers of the scene loader and animation tests: parsing a scene text as scenes/a.json
+// (with a mesh cache and a base directory), --set arguments, and comparing vectors.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -12,8 +12,12 @@
 
 namespace luz::test {
 
-inline SceneDesc parse(const std::string& json, const std::vector<Override>& overrides = {}) {
-    return parse_scene(json, "scenes/a.json", "scenes", overrides);
+/// The label of the scenes parsed from text here: their messages start with it.
+inline constexpr const char* kFile = "scenes/a.json";
+
+inline SceneDesc parse(const std::string& json, const std::vector<Override>& overrides = {},
+                       MeshCache* meshes = nullptr, const std::string& base_dir = "scenes") {
+    return parse_scene(json, kFile, base_dir, overrides, meshes);
 }
 
 inline std::vector<Override> sets(std::initializer_list<const char*> args) {
