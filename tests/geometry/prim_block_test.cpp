@@ -2,22 +2,29 @@
 // triangles sharing edges and vertices that rays pass through exactly (where an edge function is
 // 0 and the test defers to the double path), on axis-aligned rays and on degenerate triangles,
 // every lane gives the scalar test's decision and, on a hit, its very t and barycentrics.
+// axis_lanes_missed() rejects only lanes the exact cylinder and cone tests miss.
 #include "geometry/prim_block.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <vector>
 
+#include "bvh_fixtures.h"
+#include "geometry/scene.h"
+#include "geometry/shapes.h"
 #include "geometry_fixtures.h"
 
 namespace luz {
 namespace {
 
+using test::cylinder_field;
 using test::random_direction;
 using test::random_point;
 using test::Rng;
+using test::scene_with;
 using test::uniform;
 
 uint32_t bits(float x) {
@@ -178,6 +185,50 @@ TEST(PrimBlock, SphereLanesGiveTheScalarRoots) {
         EXPECT_EQ((q.hit | q.slow) & ~spheres, 0u);
     }
     EXPECT_GT(hits, 300);
+}
+
+// axis_lanes_missed() rejects a lane only when the exact test misses the whole line, and it
+// rejects many lanes (rays through the cylinders' surfaces and
+// just outside them included).
+TEST(PrimBlock, AxisLanesMissedOnlyWhatTheExactTestMisses) {
+    Rng rng(4);
+    const BuiltScene scene = build_scene(scene_with(cylinder_field(rng)));
+    ASSERT_EQ(scene.root_leaf, 0u);
+    std::vector<std::pair<const PrimBlock*, int>> lanes;
+    for (const PrimBlock& b : scene.bvh_blocks)
+        for (unsigned a = b.axis_lanes(); a != 0; a &= a - 1)
+            lanes.push_back({&b, __builtin_ctz(a)});
+    ASSERT_EQ(lanes.size(), 300u);
+    const float inf = std::numeric_limits<float>::infinity();
+    int rejected = 0, tested = 0, grazing_hits = 0;
+    for (int k = 0; k < 200000; ++k) {
+        const auto [b, lane] = lanes[rng() % lanes.size()];
+        const Shape& s = scene.shapes[b->shape[lane]];
+        ASSERT_TRUE(s.type == ShapeType::cylinder || s.type == ShapeType::cone);
+        // aimed at a point on (or just off) the side or a rim, or anywhere
+        const float phi = uniform(rng, 0, 6.2831853f);
+        float rho = k % 3 == 0 ? 1.0f : uniform(rng, 0.99f, 1.01f);
+        float z = k % 5 == 0 ? 1.0f : uniform(rng, 0, 1);
+        if (s.type == ShapeType::cone) {  // radius 1 − z
+            z = k % 5 == 0 ? 0.0f : z;
+            rho *= 1 - z;
+        }
+        const Vec3 target =
+            s.transform.world_from_object.point({rho * std::cos(phi), rho * std::sin(phi), z});
+        Ray r{random_point(rng, -6, 6), random_direction(rng)};
+        if (k % 2 == 0) r.direction = (target - r.origin) * uniform(rng, 0.1f, 3.0f);
+        const bool missed = (axis_lanes_missed(*b, 1u << lane, r) >> lane) & 1u;
+        Hit h;
+        const bool met = intersect(s, r, -inf, inf, h);
+        ++tested;
+        rejected += missed;
+        grazing_hits += met && rho != 1.0f;
+        if (missed) {
+            ASSERT_FALSE(met) << "ray " << k << " lane " << lane;
+        }
+    }
+    EXPECT_GT(rejected, tested / 3);
+    EXPECT_GT(grazing_hits, 1000);
 }
 
 }  // namespace
