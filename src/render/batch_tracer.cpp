@@ -228,11 +228,12 @@ void BatchTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit*
             unsigned which = 0;  // the rays that hit an object, shaded below
             for (int j = 0; j < q; ++j) {
                 TreeRay& node = nodes[group[j]];
-                node.distance = found[j] ? h[j].t : kInfinity;
-                if (found[j])
+                if (found[j]) {
                     which |= 1u << j;
-                else
-                    node.c = settings.image.background;
+                    node.distance = h[j].t;
+                } else {
+                    node.c = settings.image.background;  // distance: infinity
+                }
             }
             if (ref_.sees_lights()) {  // a light sphere before what a ray met: the light's colour
                 for (int j = 0; j < q; ++j) {
