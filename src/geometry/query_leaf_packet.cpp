@@ -210,8 +210,9 @@ void transmittances_leaf(const BuiltScene& scene, const Materials& materials, ui
         const PrimBlock* blocks = &scene.bvh_blocks[first / PrimBlock::kLanes];
         for (uint32_t left = count; left > 0 && open != 0; ++blocks) {  // as for_each_block()
             const PrimBlock& b = *blocks;
-            const unsigned prims = left >= PrimBlock::kLanes ? 0xFu : (1u << left) - 1;
-            left -= left >= PrimBlock::kLanes ? PrimBlock::kLanes : left;
+            const int used = static_cast<int>(std::min<uint32_t>(left, PrimBlock::kLanes));
+            const unsigned prims = (1u << used) - 1;  // lanes 0 … used − 1
+            left -= static_cast<uint32_t>(used);
             const unsigned spheres = b.sphere_lanes() & prims;
             if (spheres != prims) {  // a block of other shapes too: one segment at a time
                 for (unsigned lanes = open; lanes != 0; lanes &= lanes - 1) {
@@ -228,8 +229,7 @@ void transmittances_leaf(const BuiltScene& scene, const Materials& materials, ui
             // The one-ray test of the block's spheres turned round: the four segments against
             // one sphere at a time, the same steps lane for lane (the same roots). By sphere:
             // the segments near it, those needing the double path, those with roots.
-            // The block holds spheres only: lanes 0 … n − 1.
-            const int n = lane_count(spheres);
+            const int n = used;  // the block holds spheres only
             unsigned near[kLanes], slow[kLanes], hit[kLanes];
             alignas(16) float t0s[kLanes][kLanes], t1s[kLanes][kLanes];
             unsigned near_any = 0;

@@ -88,16 +88,17 @@ void deflate_band(const Image& img, int first, int rows, bool last, Encoding e, 
     filtered.resize(static_cast<size_t>(rows) * (row_size + 1));
     line.resize(row_size);
     Bytef* f = filtered.data();
+    Bytef* const l = line.data();  // (bytes may alias anything: not line[k], which reloads)
     for (int y = first; y < first + rows; ++y) {
         const Rgb* px = &img.at(0, y);
         for (int x = 0; x < img.width; ++x) {
-            line[3 * x + 0] = encode_8bit(px[x].x, e);
-            line[3 * x + 1] = encode_8bit(px[x].y, e);
-            line[3 * x + 2] = encode_8bit(px[x].z, e);
+            l[3 * x + 0] = encode_8bit(px[x].x, e);
+            l[3 * x + 1] = encode_8bit(px[x].y, e);
+            l[3 * x + 2] = encode_8bit(px[x].z, e);
         }
         *f++ = 1;  // Sub
         for (size_t k = 0; k < row_size; ++k) {
-            *f++ = static_cast<Bytef>(line[k] - (k >= 3 ? line[k - 3] : 0));
+            *f++ = static_cast<Bytef>(l[k] - (k >= 3 ? l[k - 3] : 0));
         }
     }
     band.length = filtered.size();

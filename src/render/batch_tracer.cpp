@@ -20,7 +20,7 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 /// Runs f(), adding its duration to counters.tests.query_ns when `timed` (a timed batch's scene
 /// queries, timed a group of rays at a time).
 template <class F>
-void query(bool timed, TraceCounters& counters, F&& f) {
+[[gnu::always_inline]] inline void query(bool timed, TraceCounters& counters, F&& f) {
     if (!timed) {
         f();
         return;
@@ -225,18 +225,23 @@ void BatchTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit*
             query(timed, counters, [&] {
                 nearest_hits_scattered(scene, r, q, 0.0f, kInfinity, h, found, counters.tests);
             });
-            unsigned which = 0;
+            unsigned which = 0;  // the rays that hit an object, shaded below
             for (int j = 0; j < q; ++j) {
                 TreeRay& node = nodes[group[j]];
-                node.distance = found[j] ? h[j].t : kInfinity;
-                const int light =
-                    ref_.sees_lights() ? ref_.nearest_light(r[j], node.distance, counters) : -1;
-                if (light >= 0) {
-                    node.c = clamp01(settings.lights[light].intensity);
-                } else if (found[j]) {
+                if (found[j]) {
                     which |= 1u << j;
+                    node.distance = h[j].t;
                 } else {
-                    node.c = settings.image.background;
+                    node.c = settings.image.background;  // distance: infinity
+                }
+            }
+            if (ref_.sees_lights()) {  // a light sphere before what a ray met: the light's colour
+                for (int j = 0; j < q; ++j) {
+                    TreeRay& node = nodes[group[j]];
+                    const int light = ref_.nearest_light(r[j], node.distance, counters);
+                    if (light < 0) continue;
+                    node.c = clamp01(settings.lights[light].intensity);
+                    which &= ~(1u << j);
                 }
             }
             if (which == 0) continue;
@@ -300,15 +305,19 @@ void BatchTracer::samples(const float* px, const float* py, int n, TraceCounters
             // What each camera ray met: an object (shaded below), a light sphere or nothing.
             unsigned which = 0;
             for (int k = 0; k < q; ++k) {
-                float t = found[k] ? hits[p + k].t : kInfinity;
-                const int light =
-                    ref_.sees_lights() ? ref_.nearest_light(camera_rays[p + k], t, counters) : -1;
-                if (light >= 0)
-                    traced[p + k] = clamp01(settings.lights[light].intensity);
-                else if (found[k])
+                if (found[k])
                     which |= 1u << k;
                 else
                     traced[p + k] = ref_.cancelled() ? Rgb{0.0f} : settings.image.background;
+            }
+            if (ref_.sees_lights()) {  // a light sphere before what a ray met: the light's colour
+                for (int k = 0; k < q; ++k) {
+                    float t = found[k] ? hits[p + k].t : kInfinity;
+                    const int light = ref_.nearest_light(camera_rays[p + k], t, counters);
+                    if (light < 0) continue;
+                    traced[p + k] = clamp01(settings.lights[light].intensity);
+                    which &= ~(1u << k);
+                }
             }
             // The hits shaded side by side, their shadow rays too.
             if (which != 0 && !ref_.cancelled()) {
@@ -326,16 +335,18 @@ void BatchTracer::samples(const float* px, const float* py, int n, TraceCounters
         } else if (packed != 0) {
             trace_trees(camera_rays, hits, shaded, packed, timed, counters, traced, tree_rays);
         }
+        uint64_t shadow = 0;  // (summed apart: rays[k] might alias the counters)
         for (int k = 0; k < m; ++k) {
-            ++counters.primary;
             uint64_t sample_rays = 1 + tree_rays[k];
             if ((packed >> k) & 1u) {
-                counters.shadow += shaded[k].shadow_rays;
+                shadow += shaded[k].shadow_rays;
                 sample_rays += shaded[k].shadow_rays;
             }
             out[first + k] = traced[k];
             if (rays) rays[first + k] = sample_rays;
         }
+        counters.primary += static_cast<uint64_t>(m);
+        counters.shadow += shadow;
         if (timed) {
             counters.timed_ns +=
                 static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(

@@ -33,14 +33,18 @@ void render_into(const BuiltScene& scene, const Settings& settings, const Render
     // said once, when a sample traces more than kExplodingTreeRays rays and min_weight is 0.
     std::atomic<bool> warned{false};
     const bool watch = control.warning && settings.render.min_weight == 0;
-    auto watch_rays = [&](uint64_t rays) {
-        if (!watch || rays <= kExplodingTreeRays || warned.exchange(true)) return;
+    const auto warn = [&](uint64_t rays) {  // apart: the check below is inlined for every sample
+        if (warned.exchange(true)) return;
         control.warning("a sample traced " + std::to_string(rays) +
                         " rays: the ray tree grows as 2^depth on reflective and transparent "
                         "surfaces (render.max_depth " +
                         std::to_string(settings.render.max_depth) +
                         "); render.min_weight (e.g. --set render.min_weight=0.01) stops rays "
                         "that weigh little, or lower render.max_depth");
+    };
+    auto watch_rays = [&](uint64_t rays) {
+        if (watch && rays > kExplodingTreeRays) [[unlikely]]
+            warn(rays);
     };
     std::vector<TraceCounters> counters;
     SamplerCounts counts;
