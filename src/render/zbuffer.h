@@ -1,5 +1,6 @@
 // The zbuffer pipeline: tessellate, project, clip, rasterize with a float depth buffer, and
-// shade every covered pixel with shade() (docs/SCENES.md#models: the model evaluated at every point).
+// shade every covered pixel with shade() (docs/SCENES.md#models: the model evaluated at every
+// point).
 #pragma once
 
 #include <cstdint>
