@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # First command of the README: install what is missing, build `luz` alone (the `demo` preset:
-# Release without tests, PGO or LTO) and render the practical assignment, demo:primitives.
+# Release without tests, PGO, LTO or the web page; only the packages it needs) and render the practical assignment, demo:primitives.
 # The optimised build of everything is `cmake --preset release` (docs/BUILDING.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
+scripts/setup.sh --demo
 start=$SECONDS
 cmake --preset demo >/dev/null
 cmake --build --preset demo
