@@ -309,23 +309,46 @@ if "bigmesh" in needs and not quick and not os.path.exists(big_mesh):
                        stdout=f, check=True)
     os.replace(big_mesh + ".tmp", big_mesh)
 
-# The SPD: the same file for both trees: NAME.nff when both read NFF, else the JSON conversion
-# SPD/json/NAME/scene.json (balls and rings: made before luz read NFF), else skipped.
-skipped = {}
+# The SPD: the same file for both trees: NAME.nff when both read NFF; else a JSON conversion
+# made here by the new tree's bench/nff_to_json (its NFF reader; lights as Il/(d+K), K = 1000,
+# for the old format, which has no `attenuation: none`: the same rays); else SPD/json/NAME
+# (balls and rings, converted before luz read NFF); else skipped (tree: truncated cones).
+skipped, spd_how = {}, {}
 if "spd" in needs:
     if not os.path.isdir(spd):
         fail(f"no SPD folder {spd} (--spd DIR)")
     both_nff = old.reads_nff() and new.reads_nff()
+    converter = os.path.join(new.build, "bench", "nff_to_json")
     for n in SPD_SCENES:
+        if not any(w.name == f"spd-{n}" for w in workloads):
+            continue
         nff, js = os.path.join(spd, n + ".nff"), os.path.join(spd, "json", n, "scene.json")
+        why = f"the old tree reads no NFF and there is no {os.path.relpath(js, spd)}"
         if both_nff and os.path.exists(nff):
             old.spd_scene[n] = new.spd_scene[n] = nff
-        elif os.path.exists(js):
+            spd_how[n] = "NFF"
+            continue
+        if os.access(converter, os.X_OK) and os.path.exists(nff):
+            out = os.path.join(work, "spd", n)
+            p = subprocess.run([converter, nff, out], capture_output=True, text=True)
+            if p.returncode == 0:
+                old.spd_scene[n] = new.spd_scene[n] = os.path.join(out, "scene.json")
+                spd_how[n] = "JSON by nff_to_json"
+                continue
+            why = p.stderr.strip().splitlines()[-1] if p.stderr.strip() else f"nff_to_json " \
+                f"failed ({p.returncode})"
+            if p.returncode != 3:
+                fail(f"{converter} {nff} {out}: {why}")
+        if os.path.exists(js):
             old.spd_scene[n] = new.spd_scene[n] = js
+            spd_how[n] = "JSON of SPD/json"
         else:
-            skipped[f"spd-{n}"] = ("the old tree reads no NFF and there is no JSON conversion "
-                                   f"{os.path.relpath(js, spd)}")
+            skipped[f"spd-{n}"] = why
     workloads = [w for w in workloads if w.name not in skipped]
+    for w in workloads:
+        if w.name.startswith("spd-"):
+            n = w.name[4:]
+            w.figures = [(k, f"{l} ({spd_how[n]})", u, kd) for k, l, u, kd in w.figures]
 
 
 # --- the runs --------------------------------------------------------------------------------
