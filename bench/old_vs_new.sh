@@ -266,14 +266,19 @@ class Tree:
         wanted = {"luz": [self.luz], "spd": [self.luz], "bvh": [self.bvh_bench],
                   "zbuffer": [self.zbuffer_bench],
                   "viewer": [self.luz, os.path.join(self.build, "luz_viewer.so")]}
-        for need in sorted(needs):
-            for path in wanted.get(need, []):
-                if not (os.path.isfile(path) and os.access(path, os.X_OK if path.endswith(
-                        ("luz", "vs_embree", "vs_llvmpipe")) else os.R_OK)):
-                    fail(f"{tag} tree: {path} is missing (build it: ninja -C {self.build} "
-                         f"luz bvh_vs_embree zbuffer_vs_llvmpipe, in a build configured with "
-                         f"-DLUZ_BUILD_BENCH=ON; the viewer needs LUZ_BUILD_VIEWER, "
-                         f"zbuffer_vs_llvmpipe libosmesa6-dev, bvh_vs_embree libembree-dev)")
+        missing = []
+        for need in ("luz", "spd", "viewer", "bvh", "zbuffer"):
+            for path in wanted[need] if need in needs else []:
+                ok = os.path.isfile(path) and os.access(
+                    path, os.R_OK if path.endswith(".so") else os.X_OK)
+                if not ok and path not in missing:
+                    missing.append(path)
+        if missing:
+            fail(f"{tag} tree: missing {', '.join(missing)}\n  build them: ninja -C {self.build} "
+                 f"luz bvh_vs_embree zbuffer_vs_llvmpipe (nff_to_json too in the new tree), in "
+                 f"a build configured with -DLUZ_BUILD_BENCH=ON; the viewer module needs "
+                 f"LUZ_BUILD_VIEWER (SDL2, imgui), zbuffer_vs_llvmpipe libosmesa6-dev, "
+                 f"bvh_vs_embree libembree-dev")
         source = self.build
         cache = os.path.join(self.build, "CMakeCache.txt")
         if os.path.exists(cache):
