@@ -7,6 +7,7 @@
 #                            OLD_BUILD NEW_BUILD
 #   OLD_BUILD, NEW_BUILD  build folders (Release, no PGO/LTO, LUZ_BUILD_BENCH=ON), each with
 #                 luz (+ luz_viewer.so), bench/bvh_vs_embree and bench/zbuffer_vs_llvmpipe
+#                 (and NEW_BUILD bench/nff_to_json while OLD_BUILD's luz reads no NFF)
 #   --runs N      runs of each tree per workload (default 5)
 #   --quick       one run each at small sizes: a smoke test of the script, not a measurement
 #   --only REGEX  only the workloads whose name matches (Python re.search), e.g. 'whitted|spd'
@@ -20,8 +21,11 @@
 # perspective and orthographic, incoherent, one ray at a time and packets of 8, Mrays/s, and
 # the Bvh8 build on 2 threads); zbuffer-5k, -100k, -1M (luz's 2-thread ms per frame from each
 # tree's zbuffer_vs_llvmpipe --luz-only); viewer (`xvfb-run -a luz view demo:whitted
-# --benchmark`, the full 640x480 pass); spd-NAME (the seven SPD scenes at 512², whole process:
-# NAME.nff when both trees read NFF, else SPD/json/NAME/scene.json for both, else skipped).
+# --benchmark`, the full 640x480 pass); spd-NAME (the seven SPD scenes at 512², whole process,
+# the same file for both trees: NAME.nff when both read NFF, else a JSON + OBJ conversion by the
+# new tree's bench/nff_to_json (same rays; not for tree's truncated cones), else
+# SPD/json/NAME/scene.json, else skipped). A workload whose trees trace different ray counts
+# (luz --stats) is flagged under the table.
 set -euo pipefail
 
 repo=$(cd "$(dirname "$0")/.." && pwd)
@@ -42,7 +46,7 @@ while (($#)); do
         --spd) spd=$2; shift ;;
         --big-mesh) big=$2; shift ;;
         --list) list=1 ;;
-        -h | --help) sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h | --help) sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         -*) echo "old_vs_new.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
         *) dirs+=("$1") ;;
     esac
