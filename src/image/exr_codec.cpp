@@ -323,15 +323,16 @@ Image decode_exr_layer(std::string_view bytes, const std::string& layer) {
         tile_h = std::min<int64_t>(ty, h);
     }
 
-    // Unwritten: a corrupt data window costs no memory until a chunk decodes. Every chunk's
-    // pixels are written once it has decoded, those of absent channels with 0.
-    Image img(static_cast<int>(w), static_cast<int>(h), Unwritten{});
+    // Taken when the first chunk has passed its checks (the library has then read and checked
+    // the chunk table): a corrupt data window is refused before it costs memory. Unwritten:
+    // every chunk's pixels are written once it has decoded, those of absent channels with 0.
+    Image img;
     bool present[3] = {};
     for (int c = 0; c < count; ++c) present[c] = find(*names[c]) != nullptr;
     // Channels luz does not read are decoded into `scratch`, every line over the last: with a
     // pointer for every channel, the library keeps to its general routines (its fast ones for
     // three half channels assume that all three are being read). Unwritten, like the image.
-    const std::unique_ptr<float[]> scratch(new float[static_cast<size_t>(tile_w)]);
+    std::unique_ptr<float[]> scratch;
     std::unique_ptr<float[]> line;  // see `sparse` below
     exr_decode_pipeline_t& decode = session.decode;
     // Decodes chunk `cinfo`, columns x0.. and rows y0.. of the image, in place. Each chunk is
@@ -356,6 +357,10 @@ Image decode_exr_layer(std::string_view bytes, const std::string& layer) {
             session.decoding = true;
         } else {
             check(exr_decoding_update(ctxt, part, &cinfo, &decode));
+        }
+        if (!scratch) {
+            img = Image(static_cast<int>(w), static_cast<int>(h), Unwritten{});
+            scratch.reset(new float[static_cast<size_t>(tile_w)]);
         }
         Rgb* const corner = img.pixels.data() + y0 * w + x0;
         char* first = reinterpret_cast<char*>(corner);
