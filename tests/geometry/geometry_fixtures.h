@@ -3,8 +3,8 @@
 // reference points for normals).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
-#include <map>
 #include <random>
 #include <string>
 #include <tuple>
@@ -152,27 +152,55 @@ inline TriangleMesh tessellated(const Shape& s, int level) {
 using Key = std::tuple<float, float, float>;
 inline Key key(const Vec3& p) { return {p.x, p.y, p.z}; }
 
+using Edge = std::pair<Key, Key>;
+
+/// Edges with the number of times each occurs, sorted by edge: a flat map, quick at the
+/// hundreds of thousands of edges of a finely tessellated torus.
+struct EdgeCounts {
+    std::vector<std::pair<Edge, int>> items;
+    auto begin() const { return items.begin(); }
+    auto end() const { return items.end(); }
+    /// How often `e` occurs (0 when never).
+    int count(const Edge& e) const {
+        const auto it =
+            std::lower_bound(items.begin(), items.end(), e,
+                             [](const auto& item, const Edge& x) { return item.first < x; });
+        return it != items.end() && it->first == e ? it->second : 0;
+    }
+};
+
+inline EdgeCounts counted(std::vector<Edge> edges) {
+    std::sort(edges.begin(), edges.end());
+    EdgeCounts out;
+    for (const Edge& e : edges) {
+        if (out.items.empty() || out.items.back().first != e) out.items.push_back({e, 0});
+        ++out.items.back().second;
+    }
+    return out;
+}
+
 /// Directed edges (a → b of each triangle) by exact vertex position, with their counts.
-inline std::map<std::pair<Key, Key>, int> directed_edges(const TriangleMesh& m) {
-    std::map<std::pair<Key, Key>, int> edges;
+inline EdgeCounts directed_edges(const TriangleMesh& m) {
+    std::vector<Edge> edges;
+    edges.reserve(3 * m.triangle_count());
     for (size_t t = 0; t < m.triangle_count(); ++t) {
         for (int k = 0; k < 3; ++k) {
             const Vec3& a = m.positions[m.indices[3 * t + k]];
             const Vec3& b = m.positions[m.indices[3 * t + (k + 1) % 3]];
-            ++edges[{key(a), key(b)}];
+            edges.push_back({key(a), key(b)});
         }
     }
-    return edges;
+    return counted(std::move(edges));
 }
 
 /// Undirected edges by exact vertex position, with the number of triangles using each.
-inline std::map<std::pair<Key, Key>, int> undirected_edges(const TriangleMesh& m) {
-    std::map<std::pair<Key, Key>, int> edges;
+inline EdgeCounts undirected_edges(const TriangleMesh& m) {
+    std::vector<Edge> edges;
     for (const auto& [e, n] : directed_edges(m)) {
         const auto& [a, b] = e;
-        edges[a < b ? std::pair{a, b} : std::pair{b, a}] += n;
+        for (int i = 0; i < n; ++i) edges.push_back(a < b ? Edge{a, b} : Edge{b, a});
     }
-    return edges;
+    return counted(std::move(edges));
 }
 
 /// (b − a) × (c − a) of triangle t, in double: twice its area, along its winding's normal.

@@ -55,8 +55,7 @@ TEST(Tessellate, ClosedShapesAreWatertightAndConsistentlyOriented) {
                 const auto directed = directed_edges(m);
                 int unpaired = 0;
                 for (const auto& [e, n] : directed) {
-                    const auto rev = directed.find({e.second, e.first});
-                    unpaired += (n != 1 || rev == directed.end() || rev->second != 1);
+                    unpaired += (n != 1 || directed.count({e.second, e.first}) != 1);
                 }
                 EXPECT_EQ(unpaired, 0);
             }
