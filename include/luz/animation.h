@@ -1,6 +1,6 @@
-// luz's public API, part 4: animations (docs/SCENES.md#animation, docs/CLI.md#frames). A scene with
-// an `animation` key is a sequence of frames, each a SceneDesc of its own (keyframed values set,
-// the camera orbited); load once, every frame checked, then take the frames one by one.
+// Animations (docs/SCENES.md#animation, docs/CLI.md#frames). A scene with an `animation` key is a
+// sequence of frames, each a SceneDesc of its own (keyframed values set, the camera orbited); load
+// once, every frame checked, then take the frames one by one.
 #pragma once
 
 #include <memory>
@@ -9,6 +9,7 @@
 
 #include "luz/render.h"
 #include "luz/scene.h"
+#include "luz/scene_text.h"
 
 namespace luz {
 

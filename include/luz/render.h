@@ -1,5 +1,5 @@
 // luz's public API, part 2: rendering. render(scene, settings) → Frame: the float image, the
-// per-term images asked for and the statistics; and a pixel's ray tree.
+// per-term images asked for and the statistics.
 #pragma once
 
 #include <atomic>
@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "luz/image.h"
-#include "luz/ray_tree.h"
 #include "luz/scene.h"
 #include "luz/stats.h"
 #include "luz/terms.h"
@@ -59,60 +58,18 @@ struct RenderOptions {
     std::vector<AovKind> aovs;  ///< the per-term images to fill (parse_aov_list("all", …))
     /// When set, only these pixels (X1, Y1 exclusive; `--region`, docs/CLI.md): the Frame is
     /// region.width() × region.height(), its pixels bit for bit those of the same rectangle of
-    /// the whole render (antialiasing and its filters included). render() checks it with
-    /// check_region().
+    /// the whole render (antialiasing and its filters included). render() checks it
+    /// (check_region(), luz/options.h).
     std::optional<PixelRect> region;
 };
-
-/// Throws SceneError naming `what` (e.g. "--region 0,0,900,10", "region") when `region` is
-/// empty or not inside the `image`'s pixels.
-void check_region(const PixelRect& region, const ImageDesc& image, const std::string& what);
-
-/// Parses "X0,Y0,X1,Y1" (four integers) as given to --region; throws SceneError naming
-/// `--region TEXT` when it is not four integers, empty, or outside `image`.
-PixelRect parse_region(const std::string& text, const ImageDesc& image);
 
 /// Renders `scene` with `settings` (a SceneDesc is a Settings: pass it as it is, or an edited
 /// copy). Builds the scene's BVH first if this is its first ray-traced render. Throws
 /// SceneError when the settings do not fit the scene (fewer materials than its objects use).
 Frame render(const Scene& scene, const Settings& settings, const RenderOptions& options = {});
 
-/// The ray tree of the sample at pixel-space point (px, py) (the pixel's centre is
-/// (i + 0.5, j + 0.5)): every ray traced for it with the numbers shade() and trace() used.
-/// In the zbuffer pipeline, the primary hit traced as raycast.
-RayTree ray_tree(const Scene& scene, const Settings& settings, float px, float py);
-
-/// What render_png() made: the PNG file's bytes (empty when cancelled) and the statistics.
-struct PngFrame {
-    std::string png;
-    RenderStats stats;
-    bool complete = false;
-};
-
-/// The image of render(scene, settings, options) as a PNG file with `encoding`, the very bytes
-/// encode_frame() gives for it. Where it can (the ray pipelines, each pixel from its own
-/// samples, no terms, mask or region asked for), it renders and compresses the image band by
-/// band into one small buffer, without a float image of the whole size.
-PngFrame render_png(const Scene& scene, const Settings& settings, const RenderOptions& options,
-                    Encoding encoding);
-
 /// The number of threads a render with `requested` threads uses (0: every core this process
 /// may run on, as its CPU affinity allows).
 int render_threads(int requested);
-
-/// Where world point `p` falls in the image of `settings`' camera, in pixel space (pixel (i, j)
-/// covers [i, i+1) × [j, j+1)); false when it lies behind the camera plane (perspective).
-bool project_point(const Settings& settings, const Vec3& p, float& px, float& py);
-
-/// Throws SceneError naming the scene and the key of the largest part (`image.width`,
-/// `render.tessellation`, `objects.N.file`, `objects`) when rendering `desc` with `aov_count`
-/// per-term images needs more than `limit` bytes (default: half the memory of this machine or
-/// of its cgroup limit).
-void check_memory(const SceneDesc& desc, std::optional<uint64_t> limit = std::nullopt,
-                  int aov_count = 0);
-
-/// Half of the physical memory (or of the cgroup limit, when smaller): check_memory()'s default
-/// cap, and the one a front end gives set_memory_limit().
-uint64_t default_memory_limit();
 
 }  // namespace luz

@@ -2,16 +2,12 @@
 // parsed JSON value, with --set-style overrides), then build it once into a Scene.
 #pragma once
 
-#include <cstdint>
 #include <memory>
-#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "luz/demo_scenes.h"  // demo_scenes(): the built-in scenes (`luz scenes`)
 #include "luz/errors.h"
-#include "luz/presets.h"  // presets(): the material presets (`luz materials`)
 #include "luz/scene_desc.h"
 
 namespace luz {
@@ -30,30 +26,6 @@ std::string one_line(const std::string& message);
 
 /// Parses one "PATH=JSON" as given to --set. Throws SceneError when malformed.
 Override parse_set(const std::string& arg);
-
-/// Reads `source` — a file path or "demo:NAME" — without parsing it, so that a front end can
-/// parse it again later with other overrides: parse_scene(text, label, base_dir, overrides)
-/// gives what load_scene(source, overrides) gives. Throws SceneError.
-SceneText read_scene_text(const std::string& source);
-
-/// Writes `desc` back as a scene file (JSON, atomically); mesh paths relative to its folder.
-void write_scene(const std::string& path, const SceneDesc& desc);
-
-/// The cap on what loading a scene may use (its text, OBJ files, meshes), in bytes.
-void set_memory_limit(uint64_t bytes);
-
-/// The scene keys a front end's render options set (docs/CLI.md `--pipeline` … `--threshold`,
-/// docs/PYTHON.md the Python keywords of the same names), each as the user gave it: a number's text
-/// or a word; an unset one keeps the scene's value.
-struct SceneOptions {
-    std::optional<std::string> pipeline, model, width, height, max_depth, aa, samples, threshold;
-};
-
-/// The overrides that set those keys (render.pipeline, render.model, image.width,
-/// image.height, render.max_depth, render.antialias.mode, .samples, .threshold), in that order,
-/// each named after its command-line option ("--width 800") so that the loader checks and
-/// reports them like the keys themselves: numbers go as typed, words as JSON strings.
-std::vector<Override> option_overrides(const SceneOptions& options);
 
 /// How often a Scene's parts were built: a test of "edits rebuild nothing they need not".
 struct BuildCounts {
@@ -123,30 +95,5 @@ class EditableScene {
     Scene scene_;
     BuildCounts retired_;  ///< builds of the scenes replaced so far
 };
-
-/// Lets `desc` share `base`'s loaded meshes where they came out the same (a reload of the same
-/// OBJ file, e.g. for other overrides), so that needs_rebuild(), which compares meshes by
-/// identity, sees equal objects as equal.
-void share_meshes(const SceneDesc& base, SceneDesc& desc);
-
-/// The range a slider of the scene key `key` (e.g. "render.max_depth", "materials.*.n") shows:
-/// within the loader's limits for that key.
-struct SliderRange {
-    double lo, hi;
-    bool capped = false;  ///< the key has an upper limit: a typed-in value stays ≤ hi
-};
-SliderRange slider_range(std::string_view key);
-
-/// A numeric scene key that has a slider: its path ("lights.*.radius", "objects.sphere.radius")
-/// and whether it takes whole numbers.
-struct SliderKey {
-    std::string key;
-    bool integer = false;
-};
-/// Every numeric scene key with a range, in the loader's order (the web page's panel).
-std::vector<SliderKey> slider_keys();
-
-/// The scene as JSON text as the loader understood it (mesh paths relative to `out_dir`).
-std::string scene_to_json(const SceneDesc& desc, const std::string& out_dir);
 
 }  // namespace luz

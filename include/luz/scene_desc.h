@@ -108,12 +108,4 @@ struct Override {
     std::string origin = "--set";
 };
 
-/// A scene's JSON text as load_scene() reads it, with how messages name it and the folder its
-/// relative paths start from.
-struct SceneText {
-    std::string text;
-    std::string label;     ///< the file path as given, or "demo:NAME"
-    std::string base_dir;  ///< the file's folder ("" for a built-in scene)
-};
-
 }  // namespace luz

@@ -33,19 +33,6 @@ struct RenderStats {
     /// broadcast (adaptive's corners) — the costs docs/SCALING.md's model starts from.
     uint64_t mpi_messages = 0, mpi_tiles_received = 0, mpi_tile_bytes_received = 0,
              mpi_broadcast_bytes = 0;
-
-    /// Adds another thread's counters (times and sizes are not summed).
-    void add_counters(const RenderStats& o) {
-        rays_primary += o.rays_primary;
-        rays_shadow += o.rays_shadow;
-        rays_reflection += o.rays_reflection;
-        rays_refraction += o.rays_refraction;
-        tests_primitive += o.tests_primitive;
-        tests_bounds += o.tests_bounds;
-        pixels_refined += o.pixels_refined;
-        samples += o.samples;
-        triangles += o.triangles;
-    }
 };
 
 }  // namespace luz

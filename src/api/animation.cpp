@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "api/stats_json.h"
+#include "render/stats.h"  // add_counters()
 #include "scene/scene_loader.h"
 
 namespace luz {
@@ -85,7 +86,7 @@ std::string animation_stats_json(const std::vector<RenderStats>& stats,
     RenderStats total = stats.front();
     for (std::size_t i = 1; i < stats.size(); ++i) {
         const RenderStats& s = stats[i];
-        total.add_counters(s);
+        add_counters(total, s);
         total.seconds += s.seconds;
         total.bvh_build_seconds += s.bvh_build_seconds;
         total.sampled_seconds += s.sampled_seconds;

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "luz/render.h"
+#include "luz/memory.h"
 #include "scene/scene_desc.h"
 
 namespace luz {
@@ -30,7 +30,6 @@ struct MemoryEstimate {
 /// asked for besides the image.
 MemoryEstimate estimate_memory(const SceneDesc& desc, int aov_count = 0);
 
-// default_memory_limit() (engine/luz_engine.h) and check_memory() (luz/render.h) are
-// declared with the API.
+// default_memory_limit() and check_memory() are declared with the API (luz/memory.h).
 
 }  // namespace luz

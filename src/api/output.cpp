@@ -1,5 +1,5 @@
 // The public outputs: checks of output paths before any work, a frame to an image file (atomic),
-// its statistics and its refinement mask (include/luz/output.h).
+// its pictures and its refinement mask (include/luz/output.h, options.h, pictures.h).
 #include "luz/output.h"
 
 #include <algorithm>
@@ -10,6 +10,8 @@
 #include "engine/luz_engine.h"  // check_writable_target()
 #include "image/atomic_file.h"
 #include "image/image_io.h"
+#include "luz/options.h"         // check_output_path(), frame_file_paths()
+#include "luz/pictures.h"        // aov_picture(), frame_aa_mask(), rgba8()
 #include "render/adaptive_aa.h"  // aa_mask_image()
 
 namespace luz {

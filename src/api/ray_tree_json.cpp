@@ -2,7 +2,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "luz/output.h"
+#include "luz/inspect.h"
 
 namespace luz {
 

@@ -1,5 +1,6 @@
 // The public render(), render_png() and ray_tree(): a built Scene with any Settings
-// (include/luz/render.h), and their twins with the engine's hooks (engine/luz_engine.h).
+// (include/luz/render.h, render_png.h, inspect.h), and their twins with the engine's hooks
+// (engine/luz_engine.h).
 #include "luz/render.h"
 
 #include <algorithm>
@@ -9,6 +10,9 @@
 #include "api/built_scene.h"
 #include "engine/luz_engine.h"
 #include "image/image_io.h"
+#include "luz/inspect.h"     // ray_tree(), project_point()
+#include "luz/options.h"     // check_region(), parse_region()
+#include "luz/render_png.h"  // render_png()
 #include "render/aov.h"
 #include "render/checkpoint.h"
 #include "render/parallel.h"

@@ -8,6 +8,7 @@
 #include "api/built_scene.h"
 #include "luz/json.h"
 #include "luz/scene.h"
+#include "luz/scene_text.h"  // share_meshes()
 #include "scene/mesh_data.h"
 
 namespace luz {

@@ -2,7 +2,7 @@
 // turned into scene overrides: one mapping, so that both mean exactly the same.
 #include <nlohmann/json.hpp>
 
-#include "luz/scene.h"
+#include "luz/options.h"
 
 namespace luz {
 

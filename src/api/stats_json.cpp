@@ -3,6 +3,8 @@
 
 #include <sys/resource.h>
 
+#include "luz/memory.h"  // peak_resident_bytes()
+
 namespace luz {
 
 const char* pipeline_name(Pipeline p) {

@@ -3,6 +3,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "luz/options.h"
+
 namespace luz {
 
 void add_render_options(CLI::App& cmd, RenderArgs& o) {

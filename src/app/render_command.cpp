@@ -11,7 +11,13 @@
 #include "app/progress_bar.h"
 #include "app/signals.h"
 #include "app/standard_output.h"
+#include "luz/animation.h"
 #include "luz/luz.h"
+#include "luz/memory.h"
+#include "luz/options.h"
+#include "luz/pictures.h"
+#include "luz/scene_text.h"
+#include "luz/stats_json.h"
 #include "luz_engine.h"
 
 namespace luz {

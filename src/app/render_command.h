@@ -5,6 +5,7 @@
 
 #include "app/cli_options.h"
 #include "luz/render.h"
+#include "luz/render_png.h"
 #include "luz/scene.h"
 #include "luz_engine.h"
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "luz/luz.h"
+#include "luz/render_png.h"
 #include "tile_share.h"
 
 namespace luz {

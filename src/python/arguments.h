@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "luz/luz.h"
+#include "luz/options.h"
 
 namespace luz::python {
 

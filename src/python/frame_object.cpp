@@ -1,6 +1,8 @@
 // luz.Frame's views, statistics and files.
 #include "python/frame_object.h"
 
+#include "luz/options.h"
+#include "luz/stats_json.h"
 #include "python/interruptible.h"
 #include "python/json_convert.h"
 

@@ -7,8 +7,15 @@
 #include <chrono>
 #include <nlohmann/json.hpp>
 
+#include "luz/demo_scenes.h"
+#include "luz/inspect.h"
 #include "luz/luz.h"
+#include "luz/memory.h"
+#include "luz/options.h"
+#include "luz/presets.h"
 #include "luz/progress_text.h"
+#include "luz/scene_text.h"
+#include "luz/stats_json.h"
 #include "python/arguments.h"
 #include "python/frame_object.h"
 #include "python/interruptible.h"

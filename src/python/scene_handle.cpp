@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "luz/memory.h"
 #include "python/interruptible.h"
 #include "python/json_convert.h"
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "luz/luz.h"
+#include "luz/scene_text.h"
 
 namespace luz::python {
 

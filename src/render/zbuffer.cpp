@@ -13,6 +13,7 @@
 #include "render/parallel.h"
 #include "render/rasterizer.h"
 #include "render/sampler.h"
+#include "render/stats.h"  // add_counters()
 #include "render/work_items.h"
 #include "render/zbuffer_antialias.h"
 #include "render/zbuffer_shade.h"
@@ -181,7 +182,7 @@ void render_tiles(const ZbufferFrame& f, const RenderControl& control, const Gri
             break;
         }
     }
-    for (const RenderStats& s : tile_stats) stats.add_counters(s);
+    for (const RenderStats& s : tile_stats) add_counters(stats, s);
 }
 
 void append_triangles_from(size_t first_index, int32_t material, ZbufferGeometry& g) {

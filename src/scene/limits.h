@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "luz/scene.h"  // SliderRange, slider_range()
+#include "luz/sliders.h"  // SliderRange, slider_range()
 
 namespace luz {
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "luz/scene_desc.h"
+#include "luz/scene_text.h"  // SceneText
 #include "math/transform.h"
 #include "scene/mesh_data.h"
 #include "scene/shape_desc.h"

@@ -11,7 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "luz/demo_scenes.h"
+#include "luz/inspect.h"
 #include "luz/luz.h"
+#include "luz/memory.h"
+#include "luz/pictures.h"
+#include "luz/scene_text.h"
+#include "luz/sliders.h"
 
 namespace {
 

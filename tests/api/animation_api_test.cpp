@@ -15,6 +15,7 @@
 
 #include "luz/animation.h"
 #include "luz/luz.h"
+#include "luz/scene_text.h"
 
 namespace luz {
 namespace {

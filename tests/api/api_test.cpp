@@ -9,6 +9,7 @@
 #include "geometry/scene.h"  // build_scene(): the internal pipeline this compares with
 #include "luz/json.h"
 #include "luz/luz.h"
+#include "luz/options.h"
 #include "render/render.h"
 
 namespace luz {

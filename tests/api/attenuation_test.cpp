@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "luz/inspect.h"
 #include "luz/luz.h"
 
 namespace luz {

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <functional>
 
+#include "luz/inspect.h"
 #include "luz/luz.h"
 
 namespace luz {

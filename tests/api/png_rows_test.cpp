@@ -9,6 +9,7 @@
 
 #include "image/image_io.h"
 #include "luz/luz.h"
+#include "luz/render_png.h"
 
 namespace luz {
 namespace {

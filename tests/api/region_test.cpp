@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "luz/luz.h"
+#include "luz/options.h"
 
 namespace luz {
 namespace {

@@ -15,7 +15,20 @@ for h in "$source_dir"/include/luz/*.h; do
   g++ -std=c++20 -fsyntax-only -I"$source_dir/include" "$tmp/probe.cpp"
 done
 
-# 2. The luz command's flags, as the build gives them to app/cli_main.cpp.
+# 2. luz/luz.h stays the core a library user needs: the public headers it pulls in, at most
+# 850 lines in all (what only some front ends need has its own header, docs/LIBRARY.md).
+limit=850
+closure=$(echo '#include "luz/luz.h"' | g++ -std=c++20 -I"$source_dir/include" -x c++ -E -H - \
+  2>&1 >/dev/null | grep -o 'luz/[a-z_0-9]*\.h$' | sort -u)
+lines=$(cd "$source_dir/include" && cat $closure | wc -l)
+echo "luz/luz.h pulls in $(echo "$closure" | wc -l) public headers, $lines lines (limit $limit)"
+if [ "$lines" -gt "$limit" ]; then
+  echo "luz/luz.h's closure is $lines lines, over $limit: give what only some front ends need" \
+    "a header of its own" >&2
+  exit 1
+fi
+
+# 3. The luz command's flags, as the build gives them to app/cli_main.cpp.
 flags=$(/usr/bin/python3 - "$build_dir/compile_commands.json" <<'PY'
 import json, shlex, sys
 for c in json.load(open(sys.argv[1])):

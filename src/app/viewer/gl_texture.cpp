@@ -4,6 +4,7 @@
 #include <SDL_opengl.h>
 
 #include "luz/luz.h"
+#include "luz/pictures.h"
 
 namespace luz {
 

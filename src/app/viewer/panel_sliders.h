@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "luz/scene.h"
+#include "luz/sliders.h"
 
 namespace luz {
 

@@ -4,6 +4,7 @@
 
 #include <imgui.h>
 
+#include "luz/inspect.h"
 #include "luz/luz.h"
 
 namespace luz {

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "luz/luz.h"
+#include "luz/pictures.h"
 
 namespace luz {
 

@@ -23,7 +23,9 @@
 #include "app/viewer/ray_tree_view.h"
 #include "app/viewer/render_worker.h"
 #include "app/viewer/screenshot.h"
+#include "luz/inspect.h"
 #include "luz/luz.h"
+#include "luz/scene_text.h"
 
 namespace luz {
 
