@@ -39,6 +39,13 @@ template <class F>
     __builtin_unreachable();  // a ShapeType outside the list
 }
 
+// A lambda inlined into its caller: GCC reads the standard attribute there, clang the GNU one.
+#if defined(__clang__)
+#define LUZ_INLINE_LAMBDA __attribute__((always_inline))
+#else
+#define LUZ_INLINE_LAMBDA [[gnu::always_inline]]
+#endif
+
 /// Nearest hit of world ray r with shape s in the open interval (t_min, t_max). Spheres under a
 /// similarity and planes are hit in world space (Shape::world_form); the other shapes in
 /// object space (transform.to_object, direction not normalised), so t is the same in both
@@ -46,7 +53,7 @@ template <class F>
 /// triangle (intersect_mesh); the scene queries use the BVH instead.
 [[gnu::always_inline]] inline bool intersect(const Shape& s, const Ray& r, float t_min, float t_max,
                                              Hit& hit) {
-    return visit_shape(s.type, [&](auto shape) [[gnu::always_inline]] {
+    return visit_shape(s.type, [&](auto shape) LUZ_INLINE_LAMBDA {
         return decltype(shape)::intersect(s, r, t_min, t_max, hit);
     });
 }
@@ -58,7 +65,7 @@ template <class F>
 [[gnu::always_inline]] inline uint32_t count_crossings(const Shape& s, const Ray& r, float t_min,
                                                        float t_max, bool first_only,
                                                        uint64_t& tests) {
-    return visit_shape(s.type, [&](auto shape) [[gnu::always_inline]] {
+    return visit_shape(s.type, [&](auto shape) LUZ_INLINE_LAMBDA {
         return decltype(shape)::count_crossings(s, r, t_min, t_max, first_only, tests);
     });
 }

@@ -50,9 +50,10 @@ std::string printable(std::string_view s, std::size_t max_chars) {
 
 std::string quote(std::string_view s, std::size_t max_chars) {
     std::size_t total = 0;
-    std::string out = "\"" + escaped_start(s, max_chars, total);
-    if (total) return out + "\xE2\x80\xA6\" (" + std::to_string(total) + " characters)";
-    return out + "\"";
+    std::string out = "\"";
+    out += escaped_start(s, max_chars, total);
+    out += total ? "\xE2\x80\xA6\" (" + std::to_string(total) + " characters)" : "\"";
+    return out;
 }
 
 std::string bytes_text(uint64_t bytes) {

@@ -87,7 +87,9 @@ void expect_bvh_equals_brute_force(const SceneDesc& desc, int rays, bool fewer_t
     EXPECT_GT(hits, rays / 5);
     EXPECT_GT(shadowed, rays / 20);
     EXPECT_GT(partial, rays / 100);
-    if (fewer_tests) EXPECT_LT(cb.primitive * 5, ca.primitive);
+    if (fewer_tests) {
+        EXPECT_LT(cb.primitive * 5, ca.primitive);
+    }
     ::testing::Test::RecordProperty("primitive_tests_bvh", std::to_string(cb.primitive));
     ::testing::Test::RecordProperty("primitive_tests_all", std::to_string(ca.primitive));
 }
