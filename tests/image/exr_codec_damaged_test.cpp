@@ -2,6 +2,7 @@
 // stderr).
 #include <OpenEXR/openexr.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <cmath>
@@ -73,6 +74,29 @@ TEST(ExrCodec, TruncatedFilesFailCleanly) {
     const std::string bytes = encode_exr(Image(8, 8, Rgb{0.5f}));
     EXPECT_NE(error_of(bytes.substr(0, bytes.size() - 1)).find("chunk"), std::string::npos)
         << error_of(bytes.substr(0, bytes.size() - 1));
+}
+
+TEST(ExrCodec, AHugeDataWindowInASmallFileIsRefusedBeforeTakingItsMemory) {
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP()
+        << "an address-space limit and AddressSanitizer's shadow memory exclude each other";
+#endif
+    // A 16 × 16 file whose header then claims 16 × 2^24 pixels (3 GiB of floats): the chunk
+    // table such a window needs does not fit in the file, which is the message, not the memory.
+    std::string bytes = encode_exr(Image(16, 16, Rgb{0.5f}));
+    const std::string key("dataWindow\0box2i\0", 17);
+    const size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos);
+    const int32_t rows = 1 << 24;  // y max, after the size field, x min, y min and x max
+    std::memcpy(&bytes[at + key.size() + 16], &rows, sizeof rows);
+    const auto decode_in_1_gib = [&bytes] {
+        rlimit limit{};
+        limit.rlim_cur = limit.rlim_max = rlim_t{1} << 30;  // 1 GiB of address space
+        setrlimit(RLIMIT_AS, &limit);
+        std::fputs(error_of(bytes).c_str(), stderr);
+        std::_Exit(0);
+    };
+    EXPECT_EXIT(decode_in_1_gib(), ::testing::ExitedWithCode(0), "invalid OpenEXR: .*chunk");
 }
 
 TEST(ExrCodec, CorruptFilesFailCleanly) {
