@@ -8,6 +8,8 @@
 # tables only, -g1).
 #   scripts/test.sh                  all of it (CI runs this)
 #   scripts/test.sh --release-only   without the sanitizer pass
+#   scripts/test.sh --save-costs     keep the last run's test times in tests/ctest_costs/ (for
+#                                    the order in which a fresh build folder runs them)
 #   scripts/test.sh --quick [BUILD]  the tests not labelled `slow`, in a build folder that has
 #                                    the tests (default: the first of build/release, build/fast,
 #                                    build/dev), after an incremental build: under 3 minutes
@@ -19,6 +21,24 @@ step() {  # step NAME COMMAND…: runs it, then says how long it took
   "${@:2}"
   echo "== $1: $((SECONDS - start)) s"
 }
+
+if [ "${1:-}" = "--save-costs" ]; then  # the test times of the last run, for seed_costs below
+  for preset in release sanitize; do
+    /usr/bin/python3 - "build/$preset/Testing/Temporary/CTestCostData.txt" \
+      "tests/ctest_costs/$preset.txt" <<'PY'
+import re, sys
+rows = []
+for line in open(sys.argv[1]):
+    if line.startswith("---"):
+        break
+    name, _, cost = (line.rstrip("\n").split(" ") + ["", "", ""])[:3]
+    if re.fullmatch(r"[\w./:-]+", name) and re.fullmatch(r"[\d.]+", cost) and float(cost) >= 0.3:
+        rows.append((float(cost), name))
+open(sys.argv[2], "w").write("".join(f"{n} 1 {c:.2f}\n" for c, n in sorted(rows, reverse=True)))
+PY
+  done
+  exit
+fi
 
 if [ "${1:-}" = "--quick" ]; then
   build="${2:-}"
@@ -35,14 +55,41 @@ fi
 
 scripts/setup.sh
 begin=$SECONDS
+sanitize=1
+[ "${1:-}" != "--release-only" ] || sanitize=0
+
+# ctest starts the longest tests first when it knows their times: a fresh build folder gets
+# those of an earlier run (tests/ctest_costs/, refreshed by `scripts/test.sh --save-costs`).
+seed_costs() {
+  local dir="build/$1/Testing/Temporary"
+  [ -f "tests/ctest_costs/$1.txt" ] && [ ! -f "$dir/CTestCostData.txt" ] || return 0
+  mkdir -p "$dir" && cp "tests/ctest_costs/$1.txt" "$dir/CTestCostData.txt"
+}
 
 cmake --preset release -DLUZ_PGO=OFF -DLUZ_LTO=OFF >/dev/null
+if ((sanitize)); then
+  # The sanitizer build starts now at the lowest priority (nice 19: a 1.5 % share against the
+  # release pass), so that it takes only the time the release pass leaves idle — links, the
+  # tests' waits, the serial MPI and viewer tests — and finishes after it.
+  cmake --preset sanitize >/dev/null
+  mkdir -p build/sanitize
+  setsid nice -n 19 cmake --build --preset sanitize >build/sanitize/build.log 2>&1 &
+  sanitize_build=$!
+  trap 'kill -- "-$sanitize_build" 2>/dev/null || true' EXIT
+fi
 step "Release build" cmake --build --preset release
+seed_costs release
 step "Release tests" ctest --preset release -j "$jobs"
 
-if [ "${1:-}" != "--release-only" ]; then
-  cmake --preset sanitize >/dev/null
-  step "Debug build with ASan + UBSan" cmake --build --preset sanitize
+if ((sanitize)); then
+  finish_sanitize_build() {
+    if wait "$sanitize_build"; then tail -n 1 build/sanitize/build.log; return; fi
+    cat build/sanitize/build.log
+    return 1
+  }
+  step "Debug build with ASan + UBSan (its rest, after the release pass)" finish_sanitize_build
+  trap - EXIT
+  seed_costs sanitize
   step "Sanitizer tests" env ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
     UBSAN_OPTIONS=print_stacktrace=1 ctest --preset sanitize -j "$jobs"
 fi
