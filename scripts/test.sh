@@ -73,7 +73,11 @@ if ((sanitize)); then
   # tests' waits, the serial MPI and viewer tests — and finishes after it.
   cmake --preset sanitize >/dev/null
   mkdir -p build/sanitize
-  setsid nice -n 19 cmake --build --preset sanitize >build/sanitize/build.log 2>&1 &
+  # Its own process group (job control), so that a failure stops all of it; the same session,
+  # so that the kernel's per-session scheduling groups (autogroup) still weigh it by its nice.
+  set -m
+  nice -n 19 cmake --build --preset sanitize >build/sanitize/build.log 2>&1 &
+  set +m
   sanitize_build=$!
   trap 'kill -- "-$sanitize_build" 2>/dev/null || true' EXIT
 fi
