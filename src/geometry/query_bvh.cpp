@@ -61,6 +61,7 @@ float transmittance_bvh(const BuiltScene& scene, const Materials& materials, con
     const bool blocked = scene.root_leaf != 0
                              ? blocks(0, scene.root_leaf)
                              : scene.bvh.any_leaves(r, t_min, t_max, counters.bounds, blocks);
+    if (!blocked && cache != nullptr) cache->lanes = 0;
     return blocked ? 0.0f : crossings.product();
 }
 

@@ -97,8 +97,9 @@ struct SegmentLanes {
 /// BVH (BuiltScene::bvh_blocks) and its lanes that blocked the last segment traced with it. A
 /// segment tests those lanes first, and is blocked without a traversal when one of them meets it
 /// opaquely (neighbouring points' shadow rays towards a light are mostly blocked by the same
-/// surface). Only the tests done change, never a result: a surface that blocks blocks whatever
-/// the order. `lanes` 0: empty.
+/// surface). A segment that nothing blocks empties it: the next one goes straight down the BVH
+/// (lit points come in runs too). Only the tests done change, never a result: a surface that
+/// blocks blocks whatever the order. `lanes` 0: empty.
 struct ShadowCache {
     uint32_t block = 0;
     unsigned lanes = 0;
