@@ -32,21 +32,36 @@ bool nearest_hit_bvh(const BuiltScene& scene, const Ray& r, float t_min, float t
 }
 
 float transmittance_bvh(const BuiltScene& scene, const Materials& materials, const Ray& r,
-                        float t_min, float t_max, IntersectCounters& counters) {
+                        float t_min, float t_max, IntersectCounters& counters, ShadowCache* cache) {
     Crossings crossings;
     for (uint32_t i : scene.unbounded) {
         if (!cross_shape(scene, materials, i, r, t_min, t_max, crossings, counters)) return 0.0f;
     }
     const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
+    if (cache != nullptr && cache->lanes != 0) {
+        // The last occluder first: if it blocks, so would the traversal's find; its transparent
+        // crossings (the other lanes') are the traversal's to count, hence counted apart.
+        Crossings apart;
+        if (!cross_block(scene, materials, scene.bvh_blocks[cache->block], cache->lanes, r, w,
+                         t_min, t_max, apart, counters))
+            return 0.0f;
+    }
     // whether the leaf of slots first … first + count − 1 blocks r
     const auto blocks = [&](uint32_t first, uint32_t count) {
         return !for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned lanes) {
-            return cross_block(scene, materials, b, lanes, r, w, t_min, t_max, crossings, counters);
+            if (cross_block(scene, materials, b, lanes, r, w, t_min, t_max, crossings, counters))
+                return true;
+            if (cache != nullptr) {
+                cache->block = static_cast<uint32_t>(&b - scene.bvh_blocks.data());
+                cache->lanes = lanes;
+            }
+            return false;
         });
     };
     const bool blocked = scene.root_leaf != 0
                              ? blocks(0, scene.root_leaf)
                              : scene.bvh.any_leaves(r, t_min, t_max, counters.bounds, blocks);
+    if (!blocked && cache != nullptr) cache->lanes = 0;
     return blocked ? 0.0f : crossings.product();
 }
 

@@ -306,8 +306,10 @@ inline bool cross_triangle(const BuiltScene& scene, const Materials& materials,
 /// The scene's BVH, planes apart (query_bvh.cpp).
 bool nearest_hit_bvh(const BuiltScene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
                      IntersectCounters& counters);
+/// With `cache`: its lanes tested first, then set to the block that blocks r, emptied if none.
 float transmittance_bvh(const BuiltScene& scene, const Materials& materials, const Ray& r,
-                        float t_min, float t_max, IntersectCounters& counters);
+                        float t_min, float t_max, IntersectCounters& counters,
+                        ShadowCache* cache = nullptr);
 /// nearest_hit_bvh() of up to eight rays, traversed as one packet (query_packet.cpp).
 void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_min, float t_max,
                       Hit* hits, bool* found, IntersectCounters& counters);

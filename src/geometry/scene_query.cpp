@@ -84,9 +84,21 @@ float transmittance(const BuiltScene& scene, const Materials& materials, const R
 }
 
 void transmittances(const BuiltScene& scene, const Materials& materials, const SegmentLanes& s,
-                    unsigned active, float* T, IntersectCounters& counters) {
+                    unsigned active, float* T, IntersectCounters& counters, ShadowCache* cache) {
     if (use_bvh(scene) && scene.root_leaf != 0 && !counters.timing) {
         query::transmittances_leaf(scene, materials, 0, scene.root_leaf, s, active, T, counters);
+        return;
+    }
+    if (use_bvh(scene) && scene.root_leaf == 0) {
+        ShadowCache own;  // the segments of this call alone
+        ShadowCache& c = cache ? *cache : own;
+        for (; active != 0; active &= active - 1) {
+            const int k = __builtin_ctz(active);
+            T[k] = timed(counters, [&] {
+                return query::transmittance_bvh(scene, materials, s.ray(k), 0.0f, s.t_max[k],
+                                                counters, &c);
+            });
+        }
         return;
     }
     for (; active != 0; active &= active - 1) {

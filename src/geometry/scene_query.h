@@ -93,11 +93,25 @@ struct SegmentLanes {
     Ray ray(int k) const { return {{ox[k], oy[k], oz[k]}, {dx[k], dy[k], dz[k]}}; }
 };
 
+/// The last occluder of one light's shadow rays (the "shadow cache"): the block of the scene's
+/// BVH (BuiltScene::bvh_blocks) and its lanes that blocked the last segment traced with it. A
+/// segment tests those lanes first, and is blocked without a traversal when one of them meets it
+/// opaquely (neighbouring points' shadow rays towards a light are mostly blocked by the same
+/// surface). A segment that nothing blocks empties it: the next one goes straight down the BVH
+/// (lit points come in runs too). Only the tests done change, never a result: a surface that
+/// blocks blocks whatever the order. `lanes` 0: empty.
+struct ShadowCache {
+    uint32_t block = 0;
+    unsigned lanes = 0;
+};
+
 /// transmittance(scene, materials, s.ray(k), 0, s.t_max[k]) into T[k] for each segment k of
 /// `active` (bit k), bit for bit. When the BVH is one leaf (BuiltScene::root_leaf) four
 /// segments meet each of its spheres and each plane at once (query_leaf_packet.cpp); otherwise
-/// one by one.
+/// one by one down the BVH, each first against the occluder of the one before (`cache`, when
+/// given, carries it from call to call: the segments of one light).
 void transmittances(const BuiltScene& scene, const Materials& materials, const SegmentLanes& s,
-                    unsigned active, float* T, IntersectCounters& counters);
+                    unsigned active, float* T, IntersectCounters& counters,
+                    ShadowCache* cache = nullptr);
 
 }  // namespace luz

@@ -33,6 +33,13 @@ template <class F>
                                   .count());
 }
 
+/// Each light's last occluder (ShadowCache), kept per thread and emptied for every batch of
+/// samples (BatchTracer::samples()): the tests a batch does depend on its samples alone.
+std::vector<ShadowCache>& batch_shadow_caches() {
+    thread_local std::vector<ShadowCache> caches;
+    return caches;
+}
+
 }  // namespace
 
 void BatchTracer::shade_hits(const Ray* rays, const Hit* hits, unsigned which, bool timed,
@@ -73,7 +80,8 @@ void BatchTracer::shade_hits(const Ray* rays, const Hit* hits, unsigned which, b
         uint64_t shadow_rays[kMaxPacket] = {};
         // vis_j of the lit lanes: their shadow rays P → light j side by side, spawned as
         // Whitted::local() spawns them (spawn_ray(), direction L_j, length d_j).
-        const auto visibility = [&](size_t, const Lane8f* L, const Lane8f& d, unsigned lit) {
+        ShadowCache* const caches = batch_shadow_caches().data();
+        const auto visibility = [&](size_t j, const Lane8f* L, const Lane8f& d, unsigned lit) {
             const Lane8f L_dot_Ng = L[0] * Ng[0] + L[1] * Ng[1] + L[2] * Ng[2];
             const Lane8f offset = lane_select(lane_gt(L_dot_Ng, lanes(0.0f)), lanes(kRayEpsilon),
                                               lanes(-kRayEpsilon));
@@ -88,8 +96,9 @@ void BatchTracer::shade_hits(const Ray* rays, const Hit* hits, unsigned which, b
             for (unsigned left = lit; left != 0; left &= left - 1)
                 ++shadow_rays[__builtin_ctz(left)];
             alignas(32) float T[kMaxPacket] = {};
-            query(timed, counters,
-                  [&] { transmittances(scene, settings.materials, seg, lit, T, counters.tests); });
+            query(timed, counters, [&] {
+                transmittances(scene, settings.materials, seg, lit, T, counters.tests, &caches[j]);
+            });
             return load_lanes(T);
         };
         shade_lanes(p, ref_.lighting(), which, I, visibility);
@@ -281,8 +290,10 @@ void BatchTracer::samples(const float* px, const float* py, int n, TraceCounters
     Hit* const hits = arrays.hits;
     ShadedHit* const shaded = arrays.shaded;
     Rgb* const traced = arrays.traced;
+    std::vector<ShadowCache>& shadow_caches = batch_shadow_caches();
     for (int first = 0; first < n; first += kBatch) {
         const int m = std::min(kBatch, n - first);
+        shadow_caches.assign(settings.lights.size(), ShadowCache{});
         // Timed: a batch holding a sample counted 0 modulo kTimedSampleEvery (a work item's
         // first batch among them), whole and in its queries.
         const uint64_t i0 = counters.primary, i1 = i0 + static_cast<uint64_t>(m) - 1;

@@ -1,0 +1,160 @@
+// Shadow segments down a BVH deeper than one leaf (transmittances() with a ShadowCache): every
+// transmittance bit for bit what transmittance() gives segment by segment, whatever the cache
+// holds — opaque and transparent occluders, blocks mixing both, a light's cache shared by calls.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "bvh_fixtures.h"
+#include "geometry/scene.h"
+#include "geometry/scene_query.h"
+#include "geometry_fixtures.h"
+
+namespace luz {
+namespace {
+
+using test::random_direction;
+using test::random_point;
+using test::random_soup;
+using test::Rng;
+using test::scene_with;
+using test::sphere;
+using test::uniform;
+
+/// A few hundred shapes of the three materials (opaque, glass 0.7, water 0.35) in a cube of
+/// side 12: spheres, cylinders, cones, boxes, a triangle soup; a plane under them.
+SceneDesc crowded_scene(Rng& rng) {
+    std::vector<ObjectDesc> objects;
+    for (int i = 0; i < 400; ++i) {
+        const int material = i % 3;
+        ObjectDesc o = sphere(random_point(rng, -6, 6), uniform(rng, 0.1f, 0.6f), material);
+        if (i % 5 == 1) {
+            o = test::cylinder_desc(i % 2 == 0);
+            o.base = random_point(rng, -6, 6);
+            o.axis = random_direction(rng);
+            o.radius = uniform(rng, 0.05f, 0.3f);
+            o.height = uniform(rng, 0.3f, 1.5f);
+        } else if (i % 5 == 3) {
+            o = test::frustum_desc(i % 2 == 0);
+            o.base = random_point(rng, -6, 6);
+            o.axis = random_direction(rng);
+        } else if (i % 7 == 4) {
+            const Vec3 lo = random_point(rng, -6, 6);
+            o = test::box(lo, lo + random_point(rng, 0.1f, 0.8f), material);
+        }
+        o.material = material;
+        objects.push_back(o);
+    }
+    objects.push_back(random_soup(rng, 300, 1));
+    objects.push_back(random_soup(rng, 300, 0));
+    objects.push_back(test::plane({0, -7, 0}, 2));
+    return scene_with(objects);
+}
+
+/// Eight shadow segments as the ray tracer makes them: from points near `centre` (coherent,
+/// neighbouring pixels) or anywhere (scattered) towards the light at `light`.
+SegmentLanes towards(Rng& rng, const Vec3& light, const Vec3& centre, float spread) {
+    SegmentLanes s;
+    for (int k = 0; k < kMaxPacket; ++k) {
+        const Vec3 p = centre + random_point(rng, -spread, spread);
+        const Vec3 to = light - p;
+        const float d = length(to);
+        const Vec3 L = to / d;
+        s.ox[k] = p.x;
+        s.oy[k] = p.y;
+        s.oz[k] = p.z;
+        s.dx[k] = L.x;
+        s.dy[k] = L.y;
+        s.dz[k] = L.z;
+        s.t_max[k] = d;
+    }
+    return s;
+}
+
+TEST(ShadowBatch, SegmentsWithTheLastOccluderFirstGiveTransmittanceBitForBit) {
+    Rng rng{2718};
+    const SceneDesc desc = crowded_scene(rng);
+    const BuiltScene scene = build_scene(desc);
+    ASSERT_EQ(scene.root_leaf, 0u) << "a BVH of several leaves";
+    const std::vector<Vec3> lights = {{0, 0, 0}, {9, 8, 7}, {-3, 20, 2}};
+    std::vector<ShadowCache> caches(lights.size());  // one per light, kept from call to call
+    IntersectCounters batched, one_by_one;
+    int mismatches = 0, partial = 0, blocked = 0, open = 0;
+    for (int call = 0; call < 6000; ++call) {
+        const size_t j = static_cast<size_t>(call) % lights.size();
+        // runs of neighbouring points, now and then a scattered packet or another light's cache
+        const Vec3 centre = random_point(rng, -6, 6);
+        const float spread = call % 11 == 5 ? 6.0f : call % 3 == 0 ? 0.05f : 0.4f;
+        const SegmentLanes s = towards(rng, lights[j], centre, spread);
+        const unsigned active = call % 7 == 3 ? (call * 37u) & 0xFFu : 0xFFu;
+        ShadowCache* cache = call % 13 == 6   ? &caches[(j + 1) % lights.size()]
+                             : call % 17 == 8 ? nullptr
+                                              : &caches[j];
+        float T[kMaxPacket];
+        transmittances(scene, desc.materials, s, active, T, batched, cache);
+        for (int k = 0; k < kMaxPacket; ++k) {
+            if (!(active >> k & 1u)) continue;
+            const float expected =
+                transmittance(scene, desc.materials, s.ray(k), 0.0f, s.t_max[k], one_by_one);
+            if (std::memcmp(&expected, &T[k], sizeof(float)) != 0 && ++mismatches <= 5) {
+                ADD_FAILURE() << "call " << call << " lane " << k << ": " << T[k]
+                              << " vs transmittance() " << expected;
+            }
+            partial += expected > 0 && expected < 1;
+            blocked += expected == 0;
+            open += expected == 1;
+        }
+    }
+    EXPECT_EQ(mismatches, 0);
+    EXPECT_GT(partial, 3000) << "segments through glass only";
+    EXPECT_GT(blocked, 3000);
+    EXPECT_GT(open, 3000);
+    // The cache spares traversals: fewer box tests than segment by segment.
+    EXPECT_LT(batched.bounds, one_by_one.bounds);
+}
+
+TEST(ShadowBatch, ACachedBlockOfGlassAndStoneCountsItsGlassOnce) {
+    // Two spheres in one leaf on the segments' line: glass (0.7) nearer the light, stone behind
+    // the points. The cache holds the leaf's block after a segment the stone blocked; segments
+    // that pass the stone but cross the glass must still count the glass once (0.7² for its two
+    // crossings), not again for the cached block's test.
+    std::vector<ObjectDesc> objects = {sphere({0, 0, 5}, 1.0f, 1), sphere({0, 0, -5}, 1.0f, 0)};
+    Rng rng{99};
+    for (int i = 0; i < 60; ++i)  // far away: a BVH of several leaves
+        objects.push_back(sphere(random_point(rng, 40, 60), 0.5f, 0));
+    const SceneDesc desc = scene_with(objects);
+    const BuiltScene scene = build_scene(desc);
+    ASSERT_EQ(scene.root_leaf, 0u);
+    const Vec3 light{0, 0, 10};
+    ShadowCache cache;
+    IntersectCounters counters;
+    const auto segment_from = [&](float z) {
+        SegmentLanes s;
+        for (int k = 0; k < kMaxPacket; ++k) {
+            s.ox[k] = 0.01f * static_cast<float>(k);
+            s.oy[k] = 0.0f;
+            s.oz[k] = z;
+            const Vec3 to = light - Vec3{s.ox[k], 0.0f, z};
+            const float d = length(to);
+            s.dx[k] = to.x / d;
+            s.dy[k] = to.y / d;
+            s.dz[k] = to.z / d;
+            s.t_max[k] = d;
+        }
+        return s;
+    };
+    float T[kMaxPacket];
+    transmittances(scene, desc.materials, segment_from(-8.0f), 0xFFu, T, counters, &cache);
+    for (int k = 0; k < kMaxPacket; ++k) EXPECT_EQ(T[k], 0.0f);
+    ASSERT_NE(cache.lanes, 0u) << "the stone's block cached";
+    transmittances(scene, desc.materials, segment_from(0.0f), 0xFFu, T, counters, &cache);
+    const float glass = transmittance(scene, desc.materials, segment_from(0.0f).ray(0), 0.0f,
+                                      segment_from(0.0f).t_max[0], counters);
+    EXPECT_EQ(glass, 0.7f * 0.7f);
+    for (int k = 0; k < kMaxPacket; ++k) EXPECT_EQ(T[k], glass) << k;
+}
+
+}  // namespace
+}  // namespace luz
