@@ -22,10 +22,10 @@
 #include "image/stream_write.h"
 
 namespace luz {
-namespace {
 
-/// The text of an errno value ("No such file or directory").
 std::string error_text(int err) { return std::error_code(err, std::generic_category()).message(); }
+
+namespace {
 
 /// The folder part of `path` ("" or ending in '/') and its file name, the name cut to the
 /// length a temporary name can hold under NAME_MAX.

@@ -14,6 +14,9 @@
 
 namespace luz {
 
+/// The text of an errno value ("No such file or directory").
+std::string error_text(int err);
+
 /// Whether a PendingFile is flushed to disk (fsync of the file before the rename and of its
 /// folder after it): a checkpoint must survive a machine crash; an image, like any program's
 /// output, is left to the page cache (the rename alone keeps it whole if luz dies), which spares

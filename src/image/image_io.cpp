@@ -25,9 +25,6 @@ namespace {
 
 constexpr const char* supported_extensions = ".png, .ppm, .pfm, .exr";
 
-/// The text of an errno value ("No such file or directory").
-std::string error_text(int err) { return std::error_code(err, std::generic_category()).message(); }
-
 /// The whole content of a file; ImageError naming `path` if it cannot be read.
 std::string read_file(const std::string& path) {
     const auto fail = [&path](int err) {

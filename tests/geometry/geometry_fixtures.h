@@ -152,7 +152,24 @@ inline TriangleMesh tessellated(const Shape& s, int level) {
 using Key = std::tuple<float, float, float>;
 inline Key key(const Vec3& p) { return {p.x, p.y, p.z}; }
 
-using Edge = std::pair<Key, Key>;
+/// Each vertex's position as a number: equal for vertices at exactly the same place (a mesh
+/// may repeat a position under several indices, as at a seam).
+inline std::vector<uint32_t> position_ids(const TriangleMesh& m) {
+    std::vector<uint32_t> order(m.positions.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](uint32_t a, uint32_t b) { return key(m.positions[a]) < key(m.positions[b]); });
+    std::vector<uint32_t> id(order.size());
+    uint32_t next = 0;
+    for (size_t i = 0; i < order.size(); ++i) {
+        if (i > 0 && key(m.positions[order[i]]) != key(m.positions[order[i - 1]])) ++next;
+        id[order[i]] = next;
+    }
+    return id;
+}
+
+/// An edge between two positions (position_ids()).
+using Edge = std::pair<uint32_t, uint32_t>;
 
 /// Edges with the number of times each occurs, sorted by edge: a flat map, quick at the
 /// hundreds of thousands of edges of a finely tessellated torus.
@@ -181,13 +198,12 @@ inline EdgeCounts counted(std::vector<Edge> edges) {
 
 /// Directed edges (a → b of each triangle) by exact vertex position, with their counts.
 inline EdgeCounts directed_edges(const TriangleMesh& m) {
+    const std::vector<uint32_t> id = position_ids(m);
     std::vector<Edge> edges;
     edges.reserve(3 * m.triangle_count());
     for (size_t t = 0; t < m.triangle_count(); ++t) {
         for (int k = 0; k < 3; ++k) {
-            const Vec3& a = m.positions[m.indices[3 * t + k]];
-            const Vec3& b = m.positions[m.indices[3 * t + (k + 1) % 3]];
-            edges.push_back({key(a), key(b)});
+            edges.push_back({id[m.indices[3 * t + k]], id[m.indices[3 * t + (k + 1) % 3]]});
         }
     }
     return counted(std::move(edges));

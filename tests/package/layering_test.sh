@@ -32,7 +32,8 @@ fi
 flags=$(/usr/bin/python3 - "$build_dir/compile_commands.json" <<'PY'
 import json, shlex, sys
 for c in json.load(open(sys.argv[1])):
-    if c["file"].endswith("src/app/cli_main.cpp"):
+    # app/cli_main.cpp, or the batch that holds it in a unity build (the sanitize preset)
+    if c["file"].endswith("src/app/cli_main.cpp") or "/luz_app.dir/Unity/" in c["command"]:
         args = shlex.split(c["command"])
         print(" ".join(shlex.quote(a) for a in args if a.startswith(("-I", "-isystem", "-std"))))
         break
