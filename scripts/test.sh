@@ -67,32 +67,13 @@ seed_costs() {
 }
 
 cmake --preset release -DLUZ_PGO=OFF -DLUZ_LTO=OFF >/dev/null
-if ((sanitize)); then
-  # The sanitizer build starts now at the lowest priority (nice 19: a 1.5 % share against the
-  # release pass), so that it takes only the time the release pass leaves idle — links, the
-  # tests' waits, the serial MPI and viewer tests — and finishes after it.
-  cmake --preset sanitize >/dev/null
-  mkdir -p build/sanitize
-  # Its own process group (job control), so that a failure stops all of it; the same session,
-  # so that the kernel's per-session scheduling groups (autogroup) still weigh it by its nice.
-  set -m
-  nice -n 19 cmake --build --preset sanitize >build/sanitize/build.log 2>&1 &
-  set +m
-  sanitize_build=$!
-  trap 'kill -- "-$sanitize_build" 2>/dev/null || true' EXIT
-fi
 step "Release build" cmake --build --preset release
 seed_costs release
 step "Release tests" ctest --preset release -j "$jobs"
 
 if ((sanitize)); then
-  finish_sanitize_build() {
-    if wait "$sanitize_build"; then tail -n 1 build/sanitize/build.log; return; fi
-    cat build/sanitize/build.log
-    return 1
-  }
-  step "Debug build with ASan + UBSan (its rest, after the release pass)" finish_sanitize_build
-  trap - EXIT
+  cmake --preset sanitize >/dev/null
+  step "Debug build with ASan + UBSan" cmake --build --preset sanitize
   seed_costs sanitize
   step "Sanitizer tests" env ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
     UBSAN_OPTIONS=print_stacktrace=1 ctest --preset sanitize -j "$jobs"
