@@ -19,8 +19,9 @@
 # whitted_vs_povray.sh's command, whole process: wall and CPU = user + sys); embree-bunny,
 # embree-1M (luz's scene query in each tree's bvh_vs_embree --scene --threads 2: primary
 # perspective and orthographic, incoherent, one ray at a time and packets of 8, Mrays/s, and
-# the Bvh8 build on 2 threads); zbuffer-5k, -100k, -1M (luz's 2-thread ms per frame from each
-# tree's zbuffer_vs_llvmpipe --luz-only); viewer (`xvfb-run -a luz view demo:whitted
+# the Bvh8 build on 2 threads, median of 7 builds: the 1M one varies ±10 % from one to the
+# next); zbuffer-5k, -100k, -1M (luz's 2-thread ms per frame from each tree's
+# zbuffer_vs_llvmpipe --luz-only); viewer (`xvfb-run -a luz view demo:whitted
 # --benchmark`, the full 640x480 pass); spd-NAME (the seven SPD scenes at 512², whole process,
 # the same file for both trees: NAME.nff when both read NFF, else a JSON + OBJ conversion by the
 # new tree's bench/nff_to_json (same rays; not for tree's truncated cones), else
@@ -122,7 +123,7 @@ def embree(mesh_args, mesh_name):
     def run(tree):
         argv = [tree.bvh_bench, "--scene", "--threads", str(THREADS), "--idle-wait", "0"]
         argv += (["--size", "128", "--reps", "1", "--build-reps", "1"] if quick
-                 else ["--build-reps", "3"])
+                 else ["--build-reps", "7"])
         text = output(argv + mesh_args(tree))
         fig = {}
         section = None

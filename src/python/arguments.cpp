@@ -135,7 +135,8 @@ std::vector<AovKind> aov_argument(py::handle aov) {
             if (!PyUnicode_Check(name.ptr())) {
                 throw py::type_error("aov: expected names (str), got " + type_name(name));
             }
-            text += (names++ ? "," : "") + name.cast<std::string>();
+            if (names++ > 0) text += ',';
+            text += name.cast<std::string>();
         }
         if (names == 0) return {};
     }

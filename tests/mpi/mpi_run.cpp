@@ -21,8 +21,7 @@ std::string mpi_skip_reason() {
 #ifndef LUZ_HAVE_MPI
     return "luz-mpi was not built (no Open MPI found: install libopenmpi-dev and reconfigure)";
 #else
-    if (::access(LUZ_MPI_BINARY, X_OK) != 0)
-        return std::string("luz-mpi was not built: no ") + LUZ_MPI_BINARY;
+    if (::access(LUZ_MPI_BINARY, X_OK) != 0) return "luz-mpi was not built: no " LUZ_MPI_BINARY;
     if (find_on_path("mpirun").empty()) return "mpirun is not on PATH (install openmpi-bin)";
     return "";
 #endif
