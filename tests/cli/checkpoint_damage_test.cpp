@@ -181,12 +181,13 @@ TEST_F(CheckpointDamage, AHugeTileCountIsRefusedWithoutAllocating) {
 
 // The periodic write fails (its folder replaced by a file mid-render: chmod would not stop
 // root): one warning, and the render completes with its output; the checkpoint is not there.
-// Written every 0.05 s, a quarter of the picture (about 0.8 s) still has many writes to try.
+// Written every 0.05 s, a quarter of the picture (about 0.3 s) still has several writes to try.
 TEST_F(CheckpointDamage, AFailedPeriodicWriteWarnsOnceAndTheRenderCompletes) {
     fs::create_directory(dir_ / "sub");
+    // Beside the folder, named after it: /tmp/e.txt was shared by concurrent runs of the test.
+    const fs::path err_path = dir_.parent_path() / (dir_.filename().string() + ".err");
     setenv("LUZ_CHECKPOINT_SECONDS", "0.05", 1);
-    const pid_t pid =
-        start_luz(render_args("sub/render.ckpt", "640", "480"), dir_, dir_.parent_path() / "e.txt");
+    const pid_t pid = start_luz(render_args("sub/render.ckpt", "640", "480"), dir_, err_path);
     unsetenv("LUZ_CHECKPOINT_SECONDS");
     const auto deadline = Clock::now() + std::chrono::seconds(30);
     while (!fs::exists(dir_ / "sub/render.ckpt") && Clock::now() < deadline)
@@ -195,8 +196,8 @@ TEST_F(CheckpointDamage, AFailedPeriodicWriteWarnsOnceAndTheRenderCompletes) {
     fs::rename(dir_ / "sub", dir_ / "old");
     write_file(dir_ / "sub", "a file where the folder was");
     const int status = wait_for(pid);
-    const std::string err = read_file(dir_.parent_path() / "e.txt");
-    fs::remove(dir_.parent_path() / "e.txt");
+    const std::string err = read_file(err_path);
+    fs::remove(err_path);
     ASSERT_TRUE(saved) << "no periodic write within 30 s: " << err;
     EXPECT_EQ(status, 0) << err;
     EXPECT_EQ(err,
