@@ -18,10 +18,19 @@ namespace {
 
 class Checkpoint : public TempDirTest {};
 
-/// Runs luz with `args` in `cwd`; sends SIGINT after `ms` milliseconds (unless it ended);
-/// returns the exit status.
+/// Runs luz with `args` in `cwd`, its checkpoint render.ckpt written every 0.02 s; sends SIGINT
+/// `ms` milliseconds after a periodic write added tiles to the file (the render under way,
+/// however fast the build; a fixed wait from the start would have to be longer than a slow
+/// build's start-up and shorter than a fast build's render), unless it ended first; returns the
+/// exit status.
 int run_and_interrupt(const std::vector<std::string>& args, const std::filesystem::path& cwd,
                       int ms) {
+    const auto size = [&] {  // 0 while there is no file
+        std::error_code ec;
+        const auto n = std::filesystem::file_size(cwd / "render.ckpt", ec);
+        return ec ? 0 : n;
+    };
+    const auto before = size();
     std::string binary = LUZ_BINARY;
     std::vector<char*> argv{binary.data()};
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
@@ -29,40 +38,47 @@ int run_and_interrupt(const std::vector<std::string>& args, const std::filesyste
     const pid_t pid = fork();
     if (pid == 0) {
         if (chdir(cwd.c_str()) != 0) _exit(126);
+        setenv("LUZ_CHECKPOINT_SECONDS", "0.02", 1);
         freopen("/dev/null", "w", stderr);
         freopen("/dev/null", "w", stdout);
         execv(binary.c_str(), argv.data());
         _exit(127);
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(ms));
-    kill(pid, SIGINT);
     int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    bool ended = false;
+    while (size() <= before && std::chrono::steady_clock::now() < deadline &&
+           !(ended = waitpid(pid, &status, WNOHANG) == pid)) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    if (!ended) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(ms));
+        kill(pid, SIGINT);
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+        }
     }
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-// About 3 s on two threads of an idle machine: long enough to be interrupted several times.
+// About 0.3 s on two threads of an idle machine: each run is interrupted once it has saved
+// some tiles, so the render need only outlast a few such runs.
 std::vector<std::string> render_args(const std::string& out, const std::string& aa) {
-    return {"render",  "demo:whitted", "--width", "1280", "--height", "960",          "--aa",
-            aa,        "--samples",    "9",       "-o",   out,        "--checkpoint", "render.ckpt",
+    return {"render",  "demo:whitted", "--width", "640", "--height", "480",          "--aa",
+            aa,        "--samples",    "9",       "-o",  out,        "--checkpoint", "render.ckpt",
             "--stats", "stats.json"};
 }
 
-/// Interrupts the render at random moments four times in a row (each run continuing from the
-/// checkpoint), then lets one more run finish (a slow sanitizer build needs it).
+/// Interrupts the render at random moments (0 to 50 ms after a run's first periodic write) four
+/// times in a row, each run continuing from the checkpoint, then lets one more run finish.
 void resume_until_done(const std::filesystem::path& dir, const std::string& aa, std::mt19937& rng) {
     const std::vector<std::string> args = render_args("resumed.png", aa);
     int interrupted = 0;
     for (int run = 0; run < 4; ++run) {
-        const int ms = std::uniform_int_distribution<int>(250, 600)(rng);
+        const int ms = std::uniform_int_distribution<int>(0, 50)(rng);
         const int status = run_and_interrupt(args, dir, ms);
         if (status == 0) break;
         ASSERT_EQ(status, 130);
-        // Kept when interrupted (unless the very first run was stopped before rendering).
-        if (interrupted > 0) {
-            ASSERT_TRUE(std::filesystem::exists(dir / "render.ckpt")) << "kept when interrupted";
-        }
+        ASSERT_TRUE(std::filesystem::exists(dir / "render.ckpt")) << "kept when interrupted";
         ASSERT_FALSE(std::filesystem::exists(dir / "resumed.png"));
         ++interrupted;
     }
@@ -90,7 +106,7 @@ TEST_F(Checkpoint, ResumedRendersEndWithTheBitsOfAnUninterruptedOne) {
 }
 
 TEST_F(Checkpoint, AnotherRendersFileIsRefusedAndLeftAsItWas) {
-    ASSERT_EQ(run_and_interrupt(render_args("out.png", "grid"), dir_, 900), 130);
+    ASSERT_EQ(run_and_interrupt(render_args("out.png", "grid"), dir_, 0), 130);
     const std::string saved = read_file(dir_ / "render.ckpt");
     write_file(dir_ / "other.png", "the previous picture");
     std::vector<std::string> other = render_args("other.png", "grid");
@@ -106,7 +122,7 @@ TEST_F(Checkpoint, AnotherRendersFileIsRefusedAndLeftAsItWas) {
 }
 
 TEST_F(Checkpoint, DamagedOrForeignFilesAreRefused) {
-    ASSERT_EQ(run_and_interrupt(render_args("out.png", "grid"), dir_, 900), 130);
+    ASSERT_EQ(run_and_interrupt(render_args("out.png", "grid"), dir_, 0), 130);
     const std::string saved = read_file(dir_ / "render.ckpt");
     ASSERT_GT(saved.size(), 100u);
     struct Case {
@@ -136,7 +152,7 @@ TEST_F(Checkpoint, DamagedOrForeignFilesAreRefused) {
 // A save cut by SIGKILL (mpirun kills a run one second after its SIGTERM) leaves a temporary
 // file beside the checkpoint: the next run goes on from the checkpoint and removes it.
 TEST_F(Checkpoint, ATemporaryFileOfAKilledSaveIsRemovedByTheNextRun) {
-    ASSERT_EQ(run_and_interrupt(render_args("out.png", "grid"), dir_, 900), 130);
+    ASSERT_EQ(run_and_interrupt(render_args("out.png", "grid"), dir_, 0), 130);
     const std::string saved = read_file(dir_ / "render.ckpt");
     const pid_t dead = fork();
     if (dead == 0) _exit(0);

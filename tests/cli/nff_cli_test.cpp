@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -89,14 +90,18 @@ TEST_F(NffCli, BadNffIsExit2WithOneLineAndNothingWritten) {
 
 TEST_F(NffCli, CheckpointResumesToTheBitsOfAnUninterruptedRender) {
     const std::string gears = std::string(LUZ_SOURCE_DIR) + "/scenes/spd/gears.nff";
-    const std::vector<std::string> common = {"render", gears,  "--width", "400",       "--height",
-                                             "400",    "--aa", "grid",    "--samples", "4"};
+    const std::vector<std::string> common = {"render", gears,  "--width", "200",       "--height",
+                                             "200",    "--aa", "grid",    "--samples", "4"};
     std::vector<std::string> plain = common, resumed = common;
     plain.insert(plain.end(), {"-o", "plain.png", "-q"});
     resumed.insert(resumed.end(), {"-o", "resumed.png", "--checkpoint", "g.ckpt", "-q"});
     ASSERT_EQ(run_luz(plain, dir_).status, 0);
-    // Interrupted after 0.3 s (unless it finished first: it takes about 1 s), then resumed.
-    const Signalled s = signal_luz(resumed, dir_, SIGINT, after_seconds(0.3));
+    // Interrupted once its first periodic write (every 0.05 s here) is there (unless it
+    // finished first: it takes about 0.3 s), then resumed.
+    setenv("LUZ_CHECKPOINT_SECONDS", "0.05", 1);
+    const Signalled s =
+        signal_luz(resumed, dir_, SIGINT, [&] { return std::filesystem::exists(dir_ / "g.ckpt"); });
+    unsetenv("LUZ_CHECKPOINT_SECONDS");
     EXPECT_TRUE(s.sent);
     if (s.sent && s.status != 0) {
         EXPECT_EQ(s.status, 130) << s.err;

@@ -209,14 +209,20 @@ inline EdgeCounts directed_edges(const TriangleMesh& m) {
     return counted(std::move(edges));
 }
 
-/// Undirected edges by exact vertex position, with the number of triangles using each.
-inline EdgeCounts undirected_edges(const TriangleMesh& m) {
+/// Undirected edges by exact vertex position, with the number of triangles using each, from
+/// the directed ones.
+inline EdgeCounts undirected_edges(const EdgeCounts& directed) {
     std::vector<Edge> edges;
-    for (const auto& [e, n] : directed_edges(m)) {
+    for (const auto& [e, n] : directed) {
         const auto& [a, b] = e;
         for (int i = 0; i < n; ++i) edges.push_back(a < b ? Edge{a, b} : Edge{b, a});
     }
     return counted(std::move(edges));
+}
+
+/// The same from the mesh.
+inline EdgeCounts undirected_edges(const TriangleMesh& m) {
+    return undirected_edges(directed_edges(m));
 }
 
 /// (b − a) × (c − a) of triangle t, in double: twice its area, along its winding's normal.
