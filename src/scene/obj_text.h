@@ -27,8 +27,12 @@ class Lines {
 
     bool next(std::string_view& line) {
         if (pos_ >= text_.size()) return false;
-        size_t end = text_.find_first_of("\r\n", pos_);
+        // the first '\n', then any '\r' before it: two memchr() scans (find_first_of() makes
+        // one call per character)
+        size_t end = text_.find('\n', pos_);
         if (end == std::string_view::npos) end = text_.size();
+        if (const size_t cr = text_.substr(0, end).find('\r', pos_); cr != std::string_view::npos)
+            end = cr;
         line = text_.substr(pos_, end - pos_);
         pos_ = end;
         if (end < text_.size()) {
