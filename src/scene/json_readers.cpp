@@ -129,12 +129,20 @@ Section::Section(const Json& j, std::string path, const std::vector<std::string_
         fail(path_, path_.empty() ? "expected a JSON object at the top level, got " + describe(j)
                                   : "expected an object, got " + describe(j));
     }
-    for (const auto& item : j.items()) {
+    // Keys mostly come in the order of `known`: each search starts after the last key found.
+    std::size_t next = 0;
+    for (const auto& member : j.get_ref<const Json::object_t&>()) {
+        const std::string& name = member.first;
         bool found = false;
-        for (std::string_view k : known) found = found || k == item.key();
+        for (std::size_t i = 0; i < known.size() && !found; ++i) {
+            const std::size_t k = (next + i) % known.size();
+            if (known[k] == name) {
+                found = true;
+                next = k + 1;
+            }
+        }
         if (!found) {
-            fail(key(item.key()), "unknown key (known: " + comma_list(known) + ")",
-                 unknown_scope.str());
+            fail(key(name), "unknown key (known: " + comma_list(known) + ")", unknown_scope.str());
         }
     }
 }

@@ -85,7 +85,7 @@ void MaterialTable::read_section(const Json& j) {
 
 int MaterialTable::resolve(const Json& j, const KeyPath& path) {
     if (j.is_string()) {
-        const std::string name = j.get<std::string>();
+        const std::string& name = j.get_ref<const std::string&>();
         if (const auto it = by_name_.find(name); it != by_name_.end()) return it->second;
         if (const Preset* p = find_preset(name)) {
             const auto it = by_preset_.find(p);

@@ -53,6 +53,16 @@ Json json_object(std::pair<const char*, Value>... kv) {
     return o;
 }
 
+/// NFF's statements, by keyword.
+enum class Keyword { v, b, l, f, s, c, p, pp, unknown };
+
+Keyword keyword_of(std::string_view k) {
+    constexpr std::string_view kOneLetter = "vblfscp";  // in the order of Keyword
+    if (k == "pp") return Keyword::pp;
+    const std::size_t i = k.size() == 1 ? kOneLetter.find(k[0]) : std::string_view::npos;
+    return i == std::string_view::npos ? Keyword::unknown : static_cast<Keyword>(i);
+}
+
 /// The lines that hold a statement: text from `#` on and blank lines are skipped.
 class Statements {
   public:
@@ -104,14 +114,15 @@ class NffReader {
 
   private:
     void statement(std::string_view keyword, Tokens& tokens) {
-        if (keyword == "b") {
+        const Keyword k = keyword_of(keyword);
+        if (k == Keyword::b) {
             float c[3];
             read_numbers(tokens, c, 3, 3, file_, line(), "b");
             background_ = Vec3(c[0], c[1], c[2]);
             scene_.lines["image.background"] = line();
             return;
         }
-        if (keyword == "v") {
+        if (k == Keyword::v) {
             if (camera_line_)
                 fail_at(file_, line(),
                         "v: a second viewpoint (the first is at line " +
@@ -123,9 +134,7 @@ class NffReader {
             viewpoint();
             return;
         }
-        const bool known = keyword == "l" || keyword == "f" || keyword == "s" || keyword == "c" ||
-                           keyword == "p" || keyword == "pp";
-        if (!known) {
+        if (k == Keyword::unknown) {
             fail_at(file_, line(),
                     "unknown statement " + quote(keyword) +
                         " (NFF statements: v, b, l, f, s, c, p, pp; # starts a comment)");
@@ -135,20 +144,20 @@ class NffReader {
                     std::string(keyword) +
                         ": before \"v\" (the viewpoint must come first; only b may precede it)");
         }
-        if (keyword == "l") {
+        if (k == Keyword::l) {
             light(tokens);
-        } else if (keyword == "f") {
+        } else if (k == Keyword::f) {
             material(tokens);
-        } else if (keyword == "s") {
+        } else if (k == Keyword::s) {
             float s[4];
             read_numbers(tokens, s, 4, 4, file_, line(), "s");
             add_object(json_object(std::pair{"type", Json("sphere")},
                                    std::pair{"center", json_vec({s[0], s[1], s[2]})},
                                    std::pair{"radius", Json(std::fabs(s[3]))}));
-        } else if (keyword == "c") {
+        } else if (k == Keyword::c) {
             cone(tokens);
         } else {
-            polygon(tokens, keyword == "pp");
+            polygon(tokens, k == Keyword::pp);
         }
     }
 
@@ -371,7 +380,9 @@ class NffReader {
     }
 
     void add_object(Json object, std::size_t at = 0) {
-        if (!material_.empty()) object["material"] = material_;
+        if (!material_.empty()) {  // appended: no object has the key yet
+            object.get_ref<Json::object_t&>().emplace_back("material", material_);
+        }
         scene_.object_lines.push_back(at ? at : line());
         objects_.push_back(std::move(object));
     }
