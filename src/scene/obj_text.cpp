@@ -24,6 +24,22 @@ std::string_view without_bom(std::string_view text) {
     return text;
 }
 
+bool Tokens::next_plain_number(float& x) {
+    size_t i = 0;
+    while (i < rest_.size() && is_blank(rest_[i])) ++i;
+    const char *begin = rest_.data() + i, *end = rest_.data() + rest_.size();
+    double d = 0;
+    // from_chars stops at a blank: ptr at the token's end means the whole token is the number
+    const auto [ptr, ec] = std::from_chars(begin, end, d);
+    if (ec != std::errc() || ptr == begin || (ptr != end && !is_blank(*ptr)) ||
+        !(std::fabs(d) <= std::numeric_limits<float>::max())) {
+        return false;
+    }
+    x = static_cast<float>(d);
+    rest_.remove_prefix(static_cast<size_t>(ptr - rest_.data()));
+    return true;
+}
+
 float read_number(std::string_view token, const std::string& file, size_t line,
                   std::string_view statement) {
     std::string_view t = token;
@@ -55,7 +71,12 @@ int read_numbers(Tokens& tokens, float* out, int min_count, int max_count, const
                  size_t line, std::string_view statement) {
     int n = 0;
     std::string_view token;
-    while (tokens.next(token)) {
+    for (;;) {
+        if (n < max_count && tokens.next_plain_number(out[n])) {  // the usual case
+            ++n;
+            continue;
+        }
+        if (!tokens.next(token)) break;
         if (n == max_count) {
             fail_at(file, line,
                     std::string(statement) + ": expected at most " + std::to_string(max_count) +

@@ -63,6 +63,10 @@ class Tokens {
         rest_.remove_prefix(j);
         return !token.empty();
     }
+    /// The next token when it is a plain number (no '+' sign) that read_number() accepts, as
+    /// that float; otherwise false, and nothing is read (read_number() then gives the error).
+    /// One pass over its characters: the number ends at a blank or at the end of the line.
+    bool next_plain_number(float& x);
     /// What is left after the tokens read so far, without leading blanks.
     std::string_view rest() const {
         size_t i = 0;
