@@ -2,6 +2,7 @@
 #include "scene/json_readers.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -15,10 +16,18 @@ void fail(std::string path, std::string what, std::string scope) {
 }
 
 std::string join(const std::string& path, std::string_view key) {
-    return path.empty() ? std::string(key) : path + "." + std::string(key);
+    if (path.empty()) return std::string(key);
+    std::string s;  // one allocation at most
+    s.reserve(path.size() + 1 + key.size());
+    s += path;
+    s += '.';
+    s += key;
+    return s;
 }
 std::string join(const std::string& path, std::size_t index) {
-    return join(path, std::to_string(index));
+    char digits[24];
+    const auto end = std::to_chars(digits, digits + sizeof digits, index).ptr;
+    return join(path, std::string_view(digits, static_cast<std::size_t>(end - digits)));
 }
 
 bool is_under(std::string_view path, std::string_view root) {
