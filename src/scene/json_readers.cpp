@@ -144,7 +144,7 @@ Section::Section(const Json& j, std::string path, const std::vector<std::string_
         const std::string& name = member.first;
         bool found = false;
         for (std::size_t i = 0; i < known.size() && !found; ++i) {
-            const std::size_t k = (next + i) % known.size();
+            const std::size_t k = next + i < known.size() ? next + i : next + i - known.size();
             if (known[k] == name) {
                 found = true;
                 next = k + 1;
