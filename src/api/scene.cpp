@@ -49,13 +49,7 @@ Scene build(const SceneDesc& desc) {
     Scene scene;
     scene.state_ = std::make_shared<Scene::State>();
     // The BVH waits for the first ray-traced render (prepare()): a zbuffer render needs none.
-    SceneDesc geometry_only;
-    geometry_only.geometry = desc.geometry;
-    geometry_only.geometry.accel = Accel::none;
-    geometry_only.objects = desc.objects;
-    geometry_only.materials = desc.materials;
-    scene.state_->built = build_scene(geometry_only);
-    scene.state_->built.geometry = desc.geometry;
+    scene.state_->built = build_scene(desc, false);
     scene.state_->counts.geometry = 1;
     return scene;
 }

@@ -122,7 +122,8 @@ int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
     std::optional<PixelRect> region;
     for (int f = range.first; f < range.end; ++f) {
         try {
-            const SceneDesc d = f == 0 ? first : animation.frame(f);
+            std::optional<SceneDesc> other;  // frame 0 is `first`: not copied
+            const SceneDesc& d = f == 0 ? first : other.emplace(animation.frame(f));
             check_memory(d, o.max_memory, static_cast<int>(aovs.size()));
             if (o.region) region = parse_region(*o.region, d.image);
         } catch (const InputError& e) {
@@ -170,10 +171,11 @@ int run_render(const RenderArgs& o, const FrameRenderer& render_frame) {
     std::vector<int> numbers;
     Frame frame;
     for (int f = range.first; f < range.end; ++f) {
-        const SceneDesc desc = f == 0 ? first : animation.frame(f);
+        std::optional<SceneDesc> other;  // frame 0 is `first`: not copied
+        const SceneDesc& desc = f == 0 ? first : other.emplace(animation.frame(f));
         if (!scene || needs_rebuild(built_from, desc)) {
             scene = build(desc);
-            built_from = desc;
+            if (f + 1 < range.end) built_from = desc;  // only a later frame compares with it
         }
         // A PNG file with nothing else asked of the frame: render_png() (band by band where it
         // can, without a float image of the whole size).

@@ -16,13 +16,17 @@ bool rank_sort(const float* key, int n, int* o) {
     Lane8f k[kRankVectors];
     std::memcpy(k, key, sizeof k);
     Lane8i rank[kRankVectors] = {};
+    const int vectors = (n + 7) / 8;  // those that hold keys 0 … n−1
     for (int j = 0; j < n; ++j) {
         const float kj = key[j];
         if (kj != kj) return false;
+        const Lane8f kj8 = lanes(kj);
+        const Lane8i j8 = lanes_i(j);
         Lane8i lane{0, 1, 2, 3, 4, 5, 6, 7};
-        for (int h = 0; h < kRankVectors; ++h, lane += 8) {
-            // key j comes before lane i if smaller, or equal with j < i (lanes −1 where true)
-            rank[h] -= (kj < k[h]) | ((kj == k[h]) & (j < lane));
+        for (int h = 0; h < vectors; ++h, lane += 8) {
+            // key j comes before lane i if smaller, or equal with j < i (lanes −1 where true);
+            // lane_lt()/lane_eq(): without AVX the operators compile lane by lane
+            rank[h] -= lane_lt(kj8, k[h]) | (lane_eq(kj8, k[h]) & lane_lt(j8, lane));
         }
     }
     for (int i = 0; i < n; ++i) o[rank[i >> 3][i & 7]] = i;

@@ -68,6 +68,10 @@ void set_axis_lane(PrimBlock& b, int k, const Affine& M) {
 }  // namespace
 
 BuiltScene build_scene(const SceneDesc& desc) {
+    return build_scene(desc, desc.render.pipeline != Pipeline::zbuffer);
+}
+
+BuiltScene build_scene(const SceneDesc& desc, bool with_bvh) {
     BuiltScene scene;
     scene.geometry = desc.geometry;
     scene.material_count = desc.materials.size();
@@ -78,9 +82,7 @@ BuiltScene build_scene(const SceneDesc& desc) {
         scene.bounds.push_back(bounds(scene.shapes.back()));
         if (const auto& m = scene.shapes.back().mesh) scene.mesh_triangles += m->triangle_count();
     }
-    if (desc.geometry.accel == Accel::bvh && desc.render.pipeline != Pipeline::zbuffer) {
-        build_bvh(scene);
-    }
+    if (desc.geometry.accel == Accel::bvh && with_bvh) build_bvh(scene);
     return scene;
 }
 

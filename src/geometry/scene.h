@@ -67,6 +67,8 @@ struct BuiltScene {
 /// rays will use it: `render.accel` is bvh and the pipeline is raycast or raytrace (otherwise
 /// build_bvh() may be called later, before a ray pipeline renders it).
 BuiltScene build_scene(const SceneDesc& desc);
+/// The same, the BVH built only if `with_bvh` (and `render.accel` is bvh).
+BuiltScene build_scene(const SceneDesc& desc, bool with_bvh);
 
 /// (Re)builds scene.bvh over the scene's shapes and mesh triangles (binned SAH, bvh.h, then
 /// 8-wide, wide_bvh.h), sets root_leaf, and times it in bvh_build_seconds.

@@ -83,9 +83,9 @@ void MaterialTable::read_section(const Json& j) {
     }
 }
 
-int MaterialTable::resolve(const Json& j, const std::string& path) {
+int MaterialTable::resolve(const Json& j, const KeyPath& path) {
     if (j.is_string()) {
-        const std::string name = j.get<std::string>();
+        const std::string& name = j.get_ref<const std::string&>();
         if (const auto it = by_name_.find(name); it != by_name_.end()) return it->second;
         if (const Preset* p = find_preset(name)) {
             const auto it = by_preset_.find(p);
@@ -106,16 +106,17 @@ int MaterialTable::resolve(const Json& j, const std::string& path) {
             }
             defined += (listed++ ? ", " : "") + printable(n, kMaxQuotedChars);
         }
-        fail(path, "unknown material " + quote(name) + " (defined in materials: " +
-                       (defined.empty() ? "none" : defined) + "; presets: " + preset_names() + ")");
+        fail(path.str(), "unknown material " + quote(name) +
+                             " (defined in materials: " + (defined.empty() ? "none" : defined) +
+                             "; presets: " + preset_names() + ")");
     }
     if (j.is_object()) {
-        Material m = read_material(j, path);
-        m.name = path;
+        Material m = read_material(j, path.str());
+        m.name = path.str();
         list_.push_back(m);
         return static_cast<int>(list_.size()) - 1;
     }
-    fail(path, "expected a material name or a material object, got " + describe(j));
+    fail(path.str(), "expected a material name or a material object, got " + describe(j));
 }
 
 int MaterialTable::add(const Material& m) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/json_readers.h"
 #include "scene/json_text.h"
 #include "scene/material.h"
 #include "scene/presets.h"
@@ -23,7 +24,7 @@ class MaterialTable {
     void read_section(const Json& j);
 
     /// The `material` key of an object: a name from `materials`, a preset, or an inline object.
-    int resolve(const Json& j, const std::string& path);
+    int resolve(const Json& j, const KeyPath& path);
 
     /// Adds a material no key names (an MTL material); returns its index.
     int add(const Material& m);

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -49,6 +51,16 @@ Json json_object(std::pair<const char*, Value>... kv) {
     members.reserve(sizeof...(kv) + 1);  // and the material add_object() appends
     (members.emplace_back(kv.first, std::move(kv.second)), ...);
     return o;
+}
+
+/// NFF's statements, by keyword.
+enum class Keyword { v, b, l, f, s, c, p, pp, unknown };
+
+Keyword keyword_of(std::string_view k) {
+    constexpr std::string_view kOneLetter = "vblfscp";  // in the order of Keyword
+    if (k == "pp") return Keyword::pp;
+    const std::size_t i = k.size() == 1 ? kOneLetter.find(k[0]) : std::string_view::npos;
+    return i == std::string_view::npos ? Keyword::unknown : static_cast<Keyword>(i);
 }
 
 /// The lines that hold a statement: text from `#` on and blank lines are skipped.
@@ -102,14 +114,15 @@ class NffReader {
 
   private:
     void statement(std::string_view keyword, Tokens& tokens) {
-        if (keyword == "b") {
+        const Keyword k = keyword_of(keyword);
+        if (k == Keyword::b) {
             float c[3];
             read_numbers(tokens, c, 3, 3, file_, line(), "b");
             background_ = Vec3(c[0], c[1], c[2]);
             scene_.lines["image.background"] = line();
             return;
         }
-        if (keyword == "v") {
+        if (k == Keyword::v) {
             if (camera_line_)
                 fail_at(file_, line(),
                         "v: a second viewpoint (the first is at line " +
@@ -121,9 +134,7 @@ class NffReader {
             viewpoint();
             return;
         }
-        const bool known = keyword == "l" || keyword == "f" || keyword == "s" || keyword == "c" ||
-                           keyword == "p" || keyword == "pp";
-        if (!known) {
+        if (k == Keyword::unknown) {
             fail_at(file_, line(),
                     "unknown statement " + quote(keyword) +
                         " (NFF statements: v, b, l, f, s, c, p, pp; # starts a comment)");
@@ -133,32 +144,33 @@ class NffReader {
                     std::string(keyword) +
                         ": before \"v\" (the viewpoint must come first; only b may precede it)");
         }
-        if (keyword == "l") {
+        if (k == Keyword::l) {
             light(tokens);
-        } else if (keyword == "f") {
+        } else if (k == Keyword::f) {
             material(tokens);
-        } else if (keyword == "s") {
+        } else if (k == Keyword::s) {
             float s[4];
             read_numbers(tokens, s, 4, 4, file_, line(), "s");
             add_object(json_object(std::pair{"type", Json("sphere")},
                                    std::pair{"center", json_vec({s[0], s[1], s[2]})},
                                    std::pair{"radius", Json(std::fabs(s[3]))}));
-        } else if (keyword == "c") {
+        } else if (k == Keyword::c) {
             cone(tokens);
         } else {
-            polygon(tokens, keyword == "pp");
+            polygon(tokens, k == Keyword::pp);
         }
     }
 
     std::size_t line() const { return statements_.line(); }
 
-    /// The next statement line of a statement that began at `first` (`what` names what was
-    /// expected there); the file must not end before it.
-    Tokens continuation(std::string_view statement, std::size_t first, const std::string& what) {
+    /// The next statement line of a statement that began at `first` (`what()` names what was
+    /// expected there, for the message only); the file must not end before it.
+    template <class What>
+    Tokens continuation(std::string_view statement, std::size_t first, const What& what) {
         std::string_view text;
         if (!statements_.next(text)) {
             fail_at(file_, first,
-                    std::string(statement) + ": the file ends before " + what + " (line " +
+                    std::string(statement) + ": the file ends before " + what() + " (line " +
                         std::to_string(first) + " on)");
         }
         return Tokens(text);
@@ -168,7 +180,8 @@ class NffReader {
     void viewpoint() {
         camera_line_ = line();
         const auto field = [&](const char* name, float* out, int count, const char* key) {
-            Tokens t = continuation("v", camera_line_, "its \"" + std::string(name) + "\" line");
+            Tokens t = continuation("v", camera_line_,
+                                    [&] { return "its \"" + std::string(name) + "\" line"; });
             std::string_view keyword;
             t.next(keyword);
             if (keyword != name) {
@@ -260,9 +273,9 @@ class NffReader {
         float c[8];
         const int n = read_numbers(tokens, c, 0, 8, file_, line(), "c");
         if (n == 0) {
-            Tokens base = continuation("c", first, "its base line (x y z radius)");
+            Tokens base = continuation("c", first, [] { return "its base line (x y z radius)"; });
             read_numbers(base, c, 4, 4, file_, line(), "c base");
-            Tokens apex = continuation("c", first, "its apex line (x y z radius)");
+            Tokens apex = continuation("c", first, [] { return "its apex line (x y z radius)"; });
             read_numbers(apex, c + 4, 4, 4, file_, line(), "c apex");
         } else if (n != 8) {
             fail_at(file_, line(),
@@ -324,9 +337,9 @@ class NffReader {
         normals_.clear();
         const int numbers = patch ? 6 : 3;
         for (std::size_t i = 0; i < n; ++i) {
-            Tokens t = continuation(
-                name, first,
-                "its " + std::to_string(n) + " vertices (it has " + std::to_string(i) + ")");
+            Tokens t = continuation(name, first, [&] {
+                return "its " + std::to_string(n) + " vertices (it has " + std::to_string(i) + ")";
+            });
             float v[6];
             read_numbers(t, v, numbers, numbers, file_, line(),
                          patch ? "pp vertex (x y z nx ny nz)" : "p vertex (x y z)");
@@ -367,8 +380,10 @@ class NffReader {
     }
 
     void add_object(Json object, std::size_t at = 0) {
-        if (!material_.empty()) object["material"] = material_;
-        scene_.lines["objects." + std::to_string(objects_.size())] = at ? at : line();
+        if (!material_.empty()) {  // appended: no object has the key yet
+            object.get_ref<Json::object_t&>().emplace_back("material", material_);
+        }
+        scene_.object_lines.push_back(at ? at : line());
         objects_.push_back(std::move(object));
     }
 
@@ -432,6 +447,20 @@ class NffReader {
     std::vector<std::array<uint32_t, 3>> triangles_;
 };
 
+/// N when `path` is "objects.N" (N written as std::to_string writes it).
+std::optional<std::size_t> object_index(std::string_view path) {
+    constexpr std::string_view kObjects = "objects.";
+    if (!path.starts_with(kObjects)) return std::nullopt;
+    const std::string_view digits = path.substr(kObjects.size());
+    std::size_t n = 0;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+    if (ec != std::errc() || end != digits.data() + digits.size() ||
+        (digits.size() > 1 && digits[0] == '0')) {
+        return std::nullopt;
+    }
+    return n;
+}
+
 }  // namespace
 
 bool is_nff_file(std::string_view label) {
@@ -444,6 +473,7 @@ bool is_nff_file(std::string_view label) {
 std::size_t NffScene::line_of(std::string_view path) const {
     std::string p(path);
     while (!p.empty()) {
+        if (const auto n = object_index(p); n && *n < object_lines.size()) return object_lines[*n];
         if (const auto it = lines.find(p); it != lines.end()) return it->second;
         const std::size_t dot = p.rfind('.');
         if (dot == std::string::npos) break;

@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <vector>
 
 #include "scene/json_text.h"
 #include "scene/mesh_data.h"
@@ -20,6 +21,7 @@ struct NffScene {
     Json doc;          ///< the scene's document: image, camera, render, lights, materials…
     MeshCache meshes;  ///< the meshes its `mesh` objects name, keyed as MeshFiles finds them
     std::unordered_map<std::string, std::size_t> lines;  ///< key path → its line in the file
+    std::vector<std::size_t> object_lines;  ///< the line of key path "objects.N", for each N
 
     /// The line of `path` or of the nearest key path above it that came from a line; 0: none.
     std::size_t line_of(std::string_view path) const;

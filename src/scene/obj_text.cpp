@@ -1,8 +1,10 @@
 // OBJ and MTL text reading: numbers and FILE:LINE errors (see obj_text.h).
 #include "scene/obj_text.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <limits>
 
@@ -22,6 +24,57 @@ std::string at(const std::string& file, size_t line) {
 std::string_view without_bom(std::string_view text) {
     if (text.size() >= 3 && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
     return text;
+}
+
+namespace {
+
+/// [-]digits[.digits] of at most 15 digits at `p`, as from_chars reads it, or nullptr (then
+/// from_chars reads it). The digits as an integer m < 10¹⁵ < 2⁵³ and 10^k (k ≤ 15) are exact
+/// doubles, so m / 10^k rounds once: the nearest double, which from_chars gives too (Clinger's
+/// fast path, as in fast_float).
+const char* read_short_decimal(const char* p, const char* end, double& d) {
+    static constexpr double kTen[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                      1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+    const bool minus = p < end && *p == '-';
+    p += minus;
+    uint64_t m = 0;
+    int digits = 0, fraction = -1;  // fraction: digits after the point (−1: no point yet)
+    for (; p < end; ++p) {
+        if (*p >= '0' && *p <= '9') {
+            m = 10 * m + static_cast<uint64_t>(*p - '0');
+            ++digits;
+            fraction += fraction >= 0;
+        } else if (*p == '.' && fraction < 0 && digits > 0) {
+            fraction = 0;
+        } else {
+            break;
+        }
+    }
+    if (digits == 0 || digits > 15 || fraction == 0) return nullptr;  // "1." is from_chars's
+    if (p < end && (*p == 'e' || *p == 'E')) return nullptr;          // an exponent
+    d = static_cast<double>(m) / kTen[std::max(fraction, 0)];
+    if (minus) d = -d;
+    return p;
+}
+
+}  // namespace
+
+bool Tokens::next_plain_number(float& x) {
+    size_t i = 0;
+    while (i < rest_.size() && is_blank(rest_[i])) ++i;
+    const char *begin = rest_.data() + i, *end = rest_.data() + rest_.size();
+    double d = 0;
+    // from_chars stops at a blank: ptr at the token's end means the whole token is the number
+    const char* const short_end = read_short_decimal(begin, end, d);
+    const auto [ptr, ec] =
+        short_end ? std::from_chars_result{short_end, std::errc()} : std::from_chars(begin, end, d);
+    if (ec != std::errc() || ptr == begin || (ptr != end && !is_blank(*ptr)) ||
+        !(std::fabs(d) <= std::numeric_limits<float>::max())) {
+        return false;
+    }
+    x = static_cast<float>(d);
+    rest_.remove_prefix(static_cast<size_t>(ptr - rest_.data()));
+    return true;
 }
 
 float read_number(std::string_view token, const std::string& file, size_t line,
@@ -55,7 +108,12 @@ int read_numbers(Tokens& tokens, float* out, int min_count, int max_count, const
                  size_t line, std::string_view statement) {
     int n = 0;
     std::string_view token;
-    while (tokens.next(token)) {
+    for (;;) {
+        if (n < max_count && tokens.next_plain_number(out[n])) {  // the usual case
+            ++n;
+            continue;
+        }
+        if (!tokens.next(token)) break;
         if (n == max_count) {
             fail_at(file, line,
                     std::string(statement) + ": expected at most " + std::to_string(max_count) +

@@ -27,8 +27,12 @@ class Lines {
 
     bool next(std::string_view& line) {
         if (pos_ >= text_.size()) return false;
-        size_t end = text_.find_first_of("\r\n", pos_);
+        // the first '\n', then any '\r' before it: two memchr() scans (find_first_of() makes
+        // one call per character)
+        size_t end = text_.find('\n', pos_);
         if (end == std::string_view::npos) end = text_.size();
+        if (const size_t cr = text_.substr(0, end).find('\r', pos_); cr != std::string_view::npos)
+            end = cr;
         line = text_.substr(pos_, end - pos_);
         pos_ = end;
         if (end < text_.size()) {
@@ -59,6 +63,10 @@ class Tokens {
         rest_.remove_prefix(j);
         return !token.empty();
     }
+    /// The next token when it is a plain number (no '+' sign) that read_number() accepts, as
+    /// that float; otherwise false, and nothing is read (read_number() then gives the error).
+    /// One pass over its characters: the number ends at a blank or at the end of the line.
+    bool next_plain_number(float& x);
     /// What is left after the tokens read so far, without leading blanks.
     std::string_view rest() const {
         size_t i = 0;

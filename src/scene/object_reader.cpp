@@ -37,15 +37,30 @@ Affine read_transform(const Json& j, const std::string& path, Vec3& scale, Vec3&
            rotation(0, rotate.x) * scaling(scale);
 }
 
-/// The keys shape type `t` accepts, in the order messages list them.
-std::vector<std::string_view> keys_of(ShapeType t) {
-    std::vector<std::string_view> keys = {"type"};
-    for (const ShapeKey& k : kShapeKeys) {
-        if (k.type == t) keys.push_back(k.name);
-    }
-    keys.push_back("material");
-    keys.push_back("transform");
-    return keys;
+/// What a Section of shape type `t` is made with: the keys it accepts, in the order messages
+/// list them, and its pattern in the limits table ("objects.sphere").
+struct ShapeSection {
+    std::vector<std::string_view> keys;
+    std::string pattern;
+};
+
+/// The ShapeSection of every shape type, made once.
+const ShapeSection& shape_section(ShapeType t) {
+    static const std::vector<ShapeSection> sections = [] {
+        std::vector<ShapeSection> all;
+        for (std::size_t i = 0; i < std::size(kShapeNames); ++i) {
+            ShapeSection& s = all.emplace_back();
+            s.keys = {"type"};
+            for (const ShapeKey& k : kShapeKeys) {
+                if (k.type == static_cast<ShapeType>(i)) s.keys.push_back(k.name);
+            }
+            s.keys.push_back("material");
+            s.keys.push_back("transform");
+            s.pattern = "objects." + std::string(kShapeNames[i]);
+        }
+        return all;
+    }();
+    return sections[static_cast<std::size_t>(t)];
 }
 
 /// The `type` key: one of the shape names of LUZ_SHAPES.
@@ -71,7 +86,7 @@ void read_shape_key(const Section& s, const ShapeKey& k, ObjectDesc& o,
                     const std::string& base_dir) {
     const Json* v = s.get(k.name);
     if (!v && k.kind != ShapeKeyKind::obj_file) return;  // absent: the default stays
-    const std::string key = s.key(k.name);
+    const KeyPath key = s.at(k.name);
     switch (k.kind) {
         case ShapeKeyKind::point:
             if (v) o.*std::get<Vec3 ObjectDesc::*>(k.member) = read_vec3(*v, key);
@@ -88,10 +103,11 @@ void read_shape_key(const Section& s, const ShapeKey& k, ObjectDesc& o,
         case ShapeKeyKind::vertices:
             if (v) {
                 if (!v->is_array() || v->size() != 3) {
-                    fail(key, "expected an array of 3 points [x, y, z], got " + describe(*v));
+                    fail(key.str(), "expected an array of 3 points [x, y, z], got " + describe(*v));
                 }
                 auto& points = o.*std::get<std::array<Vec3, 3> ObjectDesc::*>(k.member);
-                for (std::size_t i = 0; i < 3; ++i) points[i] = read_vec3((*v)[i], join(key, i));
+                for (std::size_t i = 0; i < 3; ++i)
+                    points[i] = read_vec3((*v)[i], join(key.str(), i));
             }
             break;
         case ShapeKeyKind::obj_file: {
@@ -100,7 +116,7 @@ void read_shape_key(const Section& s, const ShapeKey& k, ObjectDesc& o,
                      "missing key \"" + std::string(k.name) + "\" (the OBJ file of the mesh)");
             std::string& file = o.*std::get<std::string ObjectDesc::*>(k.member);
             file = read_string(*v, key);
-            if (file.empty()) fail(key, "must not be empty");
+            if (file.empty()) fail(key.str(), "must not be empty");
             if (!base_dir.empty() && !std::filesystem::path(file).is_absolute()) {
                 file = (std::filesystem::path(base_dir) / file).string();
             }
@@ -155,8 +171,8 @@ ObjectDesc read_object(const Json& j, const std::string& path, MaterialTable& ma
     ObjectDesc o;
     o.path = path;
     o.type = read_type(j, path);
-    const Section s(j, path, keys_of(o.type), "objects." + std::string(shape_name(o.type)),
-                    join(path, "type"));
+    const ShapeSection& section = shape_section(o.type);
+    const Section s(j, path, section.keys, section.pattern, KeyPath(path, "type"));
     bool has_obj_file = false;
     for (const ShapeKey& k : kShapeKeys) {
         if (k.type != o.type) continue;
@@ -166,7 +182,7 @@ ObjectDesc read_object(const Json& j, const std::string& path, MaterialTable& ma
     if (const std::optional<ShapeProblem> p = check_shape(o)) {
         fail(s.key(p->key), p->what, p->whole_object ? path : std::string());
     }
-    if (const Json* m = s.get("material")) o.material = materials.resolve(*m, s.key("material"));
+    if (const Json* m = s.get("material")) o.material = materials.resolve(*m, s.at("material"));
     if (const Json* t = s.get("transform"))
         o.transform = read_transform(*t, s.key("transform"), o.scale, o.rotate, o.translate);
     if (has_obj_file) meshes.load(o, s.get("material") != nullptr, materials);

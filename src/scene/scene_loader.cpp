@@ -65,6 +65,7 @@ void read_scene(const Json& doc, const std::string& base_dir, MeshCache* meshes_
     if (const Json* j = top.get("materials")) materials.read_section(*j);
     if (const Json* j = top.get("objects")) {
         if (!j->is_array()) fail("objects", "expected an array of objects, got " + describe(*j));
+        scene.objects.reserve(scene.objects.size() + j->size());
         for (std::size_t i = 0; i < j->size(); ++i) {
             check_cancel();
             scene.objects.push_back(
