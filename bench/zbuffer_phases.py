@@ -80,7 +80,8 @@ def phase(stack):
     # than perf copies), so a sample counts unless it is in set-up or process start and end.
     names = ' | '.join(s for s, _ in stack)
     srcs = ' | '.join(src for _, src in stack)
-    if NOT_A_FRAME.search(names) or 'zbuffer_vs_llvmpipe.cpp' in srcs and 'render_zbuffer' not in names:
+    in_bench = 'zbuffer_vs_llvmpipe.cpp' in srcs or 'zbuffer_bench_' in srcs  # or its parts
+    if NOT_A_FRAME.search(names) or in_bench and 'render_zbuffer' not in names:
         return None  # prepare_zbuffer, start-up: not part of a frame
     for s, src in stack:
         m = re.match(r'(?:.*/)?([\w.]+):(\d+)', src)
