@@ -27,10 +27,13 @@ class Lines {
 
     bool next(std::string_view& line) {
         if (pos_ >= text_.size()) return false;
-        // the first '\n', then any '\r' before it: two memchr() scans (find_first_of() makes
-        // one call per character)
-        size_t end = text_.find('\n', pos_);
-        if (end == std::string_view::npos) end = text_.size();
+        // the next '\n' (found once, kept while lines ending in a lone '\r' come before it),
+        // then any '\r' before it: memchr() scans, each character looked at once
+        if (newline_ == std::string_view::npos || newline_ < pos_) {
+            newline_ = text_.find('\n', pos_);
+            if (newline_ == std::string_view::npos) newline_ = text_.size();
+        }
+        size_t end = newline_;
         if (const size_t cr = text_.substr(0, end).find('\r', pos_); cr != std::string_view::npos)
             end = cr;
         line = text_.substr(pos_, end - pos_);
@@ -47,6 +50,7 @@ class Lines {
   private:
     std::string_view text_;
     size_t pos_ = 0;
+    size_t newline_ = std::string_view::npos;  // the next '\n' once found (text_.size(): none)
     size_t number_ = 0;
 };
 

@@ -1,15 +1,18 @@
-// Tests of obj_text's numbers: a number token read in one pass (Tokens::next_plain_number, with
-// its exact fast path for short decimals) gives what from_chars gives for the whole token.
+// Tests of obj_text: a number token read in one pass (Tokens::next_plain_number, with its exact
+// fast path for short decimals) gives what from_chars gives for the whole token; Lines ends a
+// line at "\n", "\r\n" and a lone "\r", in time linear in the text.
 #include "scene/obj_text.h"
 
 #include <gtest/gtest.h>
 
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace luz::obj_text {
 namespace {
@@ -84,6 +87,31 @@ TEST(ObjText, RandomDecimalsAsFromChars) {
         if (below(20) == 0) t += "e" + std::to_string(below(80) - 40);
         if (!t.empty()) expect_as_from_chars(t);  // (an empty token: the next one is read)
     }
+}
+
+TEST(ObjText, LinesEndAtLfCrlfAndALoneCr) {
+    Lines lines("a\nb\r\nc\rd\r\re\n\nf");
+    std::vector<std::string> got;
+    std::string_view line;
+    while (lines.next(line)) got.emplace_back(line);
+    EXPECT_EQ(got, (std::vector<std::string>{"a", "b", "c", "d", "", "e", "", "f"}));
+    EXPECT_EQ(lines.number(), 8u);
+}
+
+// A text whose lines all end in a lone "\r" (classic Mac OS): each line is found without
+// scanning the rest of the text for a "\n" again (that made a 3 MB OBJ file take 5 s).
+TEST(ObjText, LinesEndingInALoneCrAreReadInLinearTime) {
+    std::string text;
+    for (int i = 0; i < 1000000; ++i) text += "v\r";
+    const auto start = std::chrono::steady_clock::now();
+    Lines lines(text);
+    std::string_view line;
+    size_t count = 0;
+    while (lines.next(line)) count += line == "v";
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(count, 1000000u);
+    EXPECT_LT(seconds, 5.0);  // milliseconds in a release build; minutes when quadratic
 }
 
 }  // namespace
