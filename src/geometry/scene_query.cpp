@@ -1,11 +1,15 @@
 // BuiltScene ray queries: the choice of strategy (query_bvh.cpp with query_packet.cpp and
-// query_leaf_packet.cpp, or query_all.cpp) and the time spent in them; the slab test of a box.
+// query_leaf_packet.cpp, or query_all.cpp), of their kernels' instruction set (query_isa.h) and
+// the time spent in them; the slab test of a box.
 #include "geometry/scene_query.h"
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <cstring>
 #include <utility>
 
+#include "geometry/query_isa.h"
 #include "geometry/query_parts.h"
 
 namespace luz {
@@ -22,6 +26,20 @@ bool hit_bounds(const Bounds3& b, const Ray& r, const Vec3& inv_dir, float t_min
     }
     return true;
 }
+
+#if defined(LUZ_QUERY_AVX2)
+bool query::avx2::active() {
+    static const bool on = [] {
+        const char* isa = std::getenv("LUZ_ISA");
+        if (isa != nullptr && std::strcmp(isa, "baseline") == 0) return false;
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    }();
+    return on;
+}
+#else
+bool query::avx2::active() { return false; }
+#endif
 
 namespace {
 
@@ -41,12 +59,20 @@ auto timed(IntersectCounters& counters, F&& f) {
     return result;
 }
 
+// The BVH strategy's kernels in the instruction set of query::avx2::active() (query_isa.h).
+#if defined(LUZ_QUERY_AVX2)
+#define LUZ_KERNEL(name) (query::avx2::active() ? query::avx2::name : query::name)
+#else
+#define LUZ_KERNEL(name) query::name
+#endif
+
 }  // namespace
 
 bool nearest_hit(const BuiltScene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
                  IntersectCounters& counters) {
     return timed(counters, [&] {
-        if (use_bvh(scene)) return query::nearest_hit_bvh(scene, r, t_min, t_max, hit, counters);
+        if (use_bvh(scene))
+            return LUZ_KERNEL(nearest_hit_bvh)(scene, r, t_min, t_max, hit, counters);
         return query::nearest_hit_all(scene, r, t_min, t_max, hit, counters);
     });
 }
@@ -55,7 +81,7 @@ void nearest_hits(const BuiltScene& scene, const Ray* rays, int n, float t_min, 
                   Hit* hits, bool* found, IntersectCounters& counters) {
     timed(counters, [&] {
         if (use_bvh(scene)) {
-            query::nearest_hits_bvh(scene, rays, n, t_min, t_max, hits, found, counters);
+            LUZ_KERNEL(nearest_hits_bvh)(scene, rays, n, t_min, t_max, hits, found, counters);
         } else {
             for (int k = 0; k < n; ++k)
                 found[k] = query::nearest_hit_all(scene, rays[k], t_min, t_max, hits[k], counters);
@@ -78,7 +104,8 @@ float transmittance(const BuiltScene& scene, const Materials& materials, const R
                     float t_max, IntersectCounters& counters) {
     return timed(counters, [&] {
         if (use_bvh(scene))
-            return query::transmittance_bvh(scene, materials, r, t_min, t_max, counters);
+            return LUZ_KERNEL(transmittance_bvh)(scene, materials, r, t_min, t_max, counters,
+                                                 nullptr);
         return query::transmittance_all(scene, materials, r, t_min, t_max, counters);
     });
 }
@@ -86,7 +113,8 @@ float transmittance(const BuiltScene& scene, const Materials& materials, const R
 void transmittances(const BuiltScene& scene, const Materials& materials, const SegmentLanes& s,
                     unsigned active, float* T, IntersectCounters& counters, ShadowCache* cache) {
     if (use_bvh(scene) && scene.root_leaf != 0 && !counters.timing) {
-        query::transmittances_leaf(scene, materials, 0, scene.root_leaf, s, active, T, counters);
+        LUZ_KERNEL(transmittances_leaf)
+        (scene, materials, 0, scene.root_leaf, s, active, T, counters);
         return;
     }
     if (use_bvh(scene) && scene.root_leaf == 0) {
@@ -95,8 +123,8 @@ void transmittances(const BuiltScene& scene, const Materials& materials, const S
         for (; active != 0; active &= active - 1) {
             const int k = __builtin_ctz(active);
             T[k] = timed(counters, [&] {
-                return query::transmittance_bvh(scene, materials, s.ray(k), 0.0f, s.t_max[k],
-                                                counters, &c);
+                return LUZ_KERNEL(transmittance_bvh)(scene, materials, s.ray(k), 0.0f, s.t_max[k],
+                                                     counters, &c);
             });
         }
         return;

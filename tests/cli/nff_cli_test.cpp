@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "cli/run_luz.h"
 #include "cli/signal_luz.h"
@@ -132,6 +133,27 @@ TEST_F(NffCli, OnePixelHoldsTheHandComputedPhongWithoutDistanceAttenuation) {
     EXPECT_NEAR(rgb[0], 1.3f, 1.0f / 255);
     EXPECT_NEAR(rgb[1], 0.7f, 1.0f / 255);
     EXPECT_NEAR(rgb[2], 0.4f, 1.0f / 255);
+}
+
+TEST_F(NffCli, PortableAndAvx2KernelsRenderTheSameBits) {
+    // LUZ_ISA=baseline: the portable scene queries even where the AVX2 ones would run
+    // (geometry/query_isa.h); the same image bit for bit, on SPD scenes of every kind of
+    // primitive (spheres and cylinders; cones; glass and mirror polygons).
+    for (const char* name : {"rings", "tree", "gears"}) {
+        const std::string nff = std::string(LUZ_SOURCE_DIR) + "/scenes/spd/" + name + ".nff";
+        const std::vector<std::string> args = {"render",   nff,  "--width", "64",
+                                               "--height", "64", "-o"};
+        auto with = args;
+        with.push_back("default.pfm");
+        ASSERT_EQ(run_luz(with, dir_).status, 0);
+        setenv("LUZ_ISA", "baseline", 1);
+        auto without = args;
+        without.push_back("baseline.pfm");
+        const RunResult r = run_luz(without, dir_);
+        unsetenv("LUZ_ISA");
+        ASSERT_EQ(r.status, 0) << r.err;
+        EXPECT_EQ(read_file(dir_ / "default.pfm"), read_file(dir_ / "baseline.pfm")) << name;
+    }
 }
 
 }  // namespace
