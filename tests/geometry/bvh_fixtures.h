@@ -1,5 +1,6 @@
 // Shared helpers of the BVH tests: mesh objects (random soups, planar grids, degenerate
-// triangles), spheres, boxes and planes in a scene of three materials, random and camera rays.
+// triangles), spheres, boxes and planes in a scene of three materials, a crowded scene of every
+// bounded shape kind, random and camera rays.
 #pragma once
 
 #include <cmath>
@@ -171,6 +172,42 @@ inline std::vector<ObjectDesc> cylinder_field(Rng& rng) {
     for (int i = 0; i < 40; ++i)
         objects.push_back(sphere(random_point(rng, -4, 4), uniform(rng, 0.1f, 0.6f), i % 3));
     return objects;
+}
+
+/// `n` shapes in a cube of side 12, in three materials (opaque, glass 0.7, water 0.35) by turns:
+/// spheres, cylinders and frusta along random axes, boxes, tori; with `soup` > 0 two triangle
+/// soups of that many triangles beside them (glass, opaque); a plane under them.
+inline SceneDesc crowded_scene(Rng& rng, int n, int soup) {
+    std::vector<ObjectDesc> objects;
+    for (int i = 0; i < n; ++i) {
+        const int material = i % 3;
+        ObjectDesc o = sphere(random_point(rng, -6, 6), uniform(rng, 0.1f, 0.6f), material);
+        if (i % 5 == 1) {
+            o = cylinder_desc(i % 2 == 0);
+            o.base = random_point(rng, -6, 6);
+            o.axis = random_direction(rng);
+            o.radius = uniform(rng, 0.05f, 0.3f);
+            o.height = uniform(rng, 0.3f, 1.5f);
+        } else if (i % 5 == 3) {
+            o = frustum_desc(i % 2 == 0);
+            o.base = random_point(rng, -6, 6);
+            o.axis = random_direction(rng);
+        } else if (i % 7 == 4) {
+            const Vec3 lo = random_point(rng, -6, 6);
+            o = box(lo, lo + random_point(rng, 0.1f, 0.8f), material);
+        } else if (i % 11 == 6) {
+            o = torus_desc();
+            o.center = random_point(rng, -6, 6);
+        }
+        o.material = material;
+        objects.push_back(o);
+    }
+    if (soup > 0) {
+        objects.push_back(random_soup(rng, soup, 1));
+        objects.push_back(random_soup(rng, soup, 0));
+    }
+    objects.push_back(plane({0, -7, 0}, 2));
+    return scene_with(objects);
 }
 
 /// Camera-like packets: rays from one eye through neighbouring points of a small square of

@@ -20,10 +20,7 @@ namespace {
 
 using test::random_direction;
 using test::random_point;
-using test::random_soup;
 using test::Rng;
-using test::scene_with;
-using test::sphere;
 using test::uniform;
 
 #if defined(LUZ_QUERY_AVX2)
@@ -32,41 +29,6 @@ bool cpu_has_avx2() {
     return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
 }
 #endif
-
-/// `n` spheres, cylinders, frusta, boxes and tori in three materials (opaque, glass, water), two
-/// triangle soups beside them unless n ≤ 10; a plane below.
-SceneDesc crowded(Rng& rng, int n) {
-    std::vector<ObjectDesc> objects;
-    for (int i = 0; i < n; ++i) {
-        const int material = i % 3;
-        ObjectDesc o = sphere(random_point(rng, -6, 6), uniform(rng, 0.1f, 0.6f), material);
-        if (i % 5 == 1) {
-            o = test::cylinder_desc(i % 2 == 0);
-            o.base = random_point(rng, -6, 6);
-            o.axis = random_direction(rng);
-            o.radius = uniform(rng, 0.05f, 0.3f);
-            o.height = uniform(rng, 0.3f, 1.5f);
-        } else if (i % 5 == 3) {
-            o = test::frustum_desc(i % 2 == 0);
-            o.base = random_point(rng, -6, 6);
-            o.axis = random_direction(rng);
-        } else if (i % 7 == 4) {
-            const Vec3 lo = random_point(rng, -6, 6);
-            o = test::box(lo, lo + random_point(rng, 0.1f, 0.8f), material);
-        } else if (i % 11 == 6) {
-            o = test::torus_desc();
-            o.center = random_point(rng, -6, 6);
-        }
-        o.material = material;
-        objects.push_back(o);
-    }
-    if (n > 10) {  // else a scene that fits one leaf
-        objects.push_back(random_soup(rng, 200, 1));
-        objects.push_back(random_soup(rng, 200, 0));
-    }
-    objects.push_back(test::plane({0, -7, 0}, 2));
-    return scene_with(objects);
-}
 
 bool same_hit(bool f1, const Hit& a, bool f2, const Hit& b) {
     return f1 == f2 && (!f1 || (std::memcmp(&a.t, &b.t, sizeof(float)) == 0 && a.shape == b.shape &&
@@ -81,7 +43,7 @@ TEST(QueryIsa, Avx2KernelsGiveThePortableKernelsBits) {
     if (!cpu_has_avx2()) GTEST_SKIP() << "this CPU has no AVX2 and FMA";
     for (const int n : {5, 500}) {  // one leaf (root_leaf) and a deep BVH
         Rng rng{static_cast<uint32_t>(4242 + n)};
-        const SceneDesc desc = crowded(rng, n);
+        const SceneDesc desc = test::crowded_scene(rng, n, n > 10 ? 200 : 0);
         const BuiltScene scene = build_scene(desc);
         ASSERT_EQ(scene.root_leaf != 0, n == 5);
         IntersectCounters c1, c2;

@@ -15,43 +15,10 @@
 namespace luz {
 namespace {
 
-using test::random_direction;
 using test::random_point;
-using test::random_soup;
 using test::Rng;
 using test::scene_with;
 using test::sphere;
-using test::uniform;
-
-/// A few hundred shapes of the three materials (opaque, glass 0.7, water 0.35) in a cube of
-/// side 12: spheres, cylinders, cones, boxes, a triangle soup; a plane under them.
-SceneDesc crowded_scene(Rng& rng) {
-    std::vector<ObjectDesc> objects;
-    for (int i = 0; i < 400; ++i) {
-        const int material = i % 3;
-        ObjectDesc o = sphere(random_point(rng, -6, 6), uniform(rng, 0.1f, 0.6f), material);
-        if (i % 5 == 1) {
-            o = test::cylinder_desc(i % 2 == 0);
-            o.base = random_point(rng, -6, 6);
-            o.axis = random_direction(rng);
-            o.radius = uniform(rng, 0.05f, 0.3f);
-            o.height = uniform(rng, 0.3f, 1.5f);
-        } else if (i % 5 == 3) {
-            o = test::frustum_desc(i % 2 == 0);
-            o.base = random_point(rng, -6, 6);
-            o.axis = random_direction(rng);
-        } else if (i % 7 == 4) {
-            const Vec3 lo = random_point(rng, -6, 6);
-            o = test::box(lo, lo + random_point(rng, 0.1f, 0.8f), material);
-        }
-        o.material = material;
-        objects.push_back(o);
-    }
-    objects.push_back(random_soup(rng, 300, 1));
-    objects.push_back(random_soup(rng, 300, 0));
-    objects.push_back(test::plane({0, -7, 0}, 2));
-    return scene_with(objects);
-}
 
 /// Eight shadow segments as the ray tracer makes them: from points near `centre` (coherent,
 /// neighbouring pixels) or anywhere (scattered) towards the light at `light`.
@@ -75,7 +42,7 @@ SegmentLanes towards(Rng& rng, const Vec3& light, const Vec3& centre, float spre
 
 TEST(ShadowBatch, SegmentsWithTheLastOccluderFirstGiveTransmittanceBitForBit) {
     Rng rng{2718};
-    const SceneDesc desc = crowded_scene(rng);
+    const SceneDesc desc = test::crowded_scene(rng, 400, 300);
     const BuiltScene scene = build_scene(desc);
     ASSERT_EQ(scene.root_leaf, 0u) << "a BVH of several leaves";
     const std::vector<Vec3> lights = {{0, 0, 0}, {9, 8, 7}, {-3, 20, 2}};
