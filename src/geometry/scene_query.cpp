@@ -59,11 +59,13 @@ auto timed(IntersectCounters& counters, F&& f) {
     return result;
 }
 
-// The BVH strategy's kernels in the instruction set of query::avx2::active() (query_isa.h).
+// The BVH strategy's kernel `name` called with the arguments that follow, in the instruction set
+// of query::avx2::active() (query_isa.h): two direct calls behind one branch.
 #if defined(LUZ_QUERY_AVX2)
-#define LUZ_KERNEL(name) (query::avx2::active() ? query::avx2::name : query::name)
+#define LUZ_KERNEL(name, ...) \
+    (query::avx2::active() ? query::avx2::name(__VA_ARGS__) : query::name(__VA_ARGS__))
 #else
-#define LUZ_KERNEL(name) query::name
+#define LUZ_KERNEL(name, ...) query::name(__VA_ARGS__)
 #endif
 
 }  // namespace
@@ -72,7 +74,7 @@ bool nearest_hit(const BuiltScene& scene, const Ray& r, float t_min, float t_max
                  IntersectCounters& counters) {
     return timed(counters, [&] {
         if (use_bvh(scene))
-            return LUZ_KERNEL(nearest_hit_bvh)(scene, r, t_min, t_max, hit, counters);
+            return LUZ_KERNEL(nearest_hit_bvh, scene, r, t_min, t_max, hit, counters);
         return query::nearest_hit_all(scene, r, t_min, t_max, hit, counters);
     });
 }
@@ -81,7 +83,7 @@ void nearest_hits(const BuiltScene& scene, const Ray* rays, int n, float t_min, 
                   Hit* hits, bool* found, IntersectCounters& counters) {
     timed(counters, [&] {
         if (use_bvh(scene)) {
-            LUZ_KERNEL(nearest_hits_bvh)(scene, rays, n, t_min, t_max, hits, found, counters);
+            LUZ_KERNEL(nearest_hits_bvh, scene, rays, n, t_min, t_max, hits, found, counters);
         } else {
             for (int k = 0; k < n; ++k)
                 found[k] = query::nearest_hit_all(scene, rays[k], t_min, t_max, hits[k], counters);
@@ -104,8 +106,8 @@ float transmittance(const BuiltScene& scene, const Materials& materials, const R
                     float t_max, IntersectCounters& counters) {
     return timed(counters, [&] {
         if (use_bvh(scene))
-            return LUZ_KERNEL(transmittance_bvh)(scene, materials, r, t_min, t_max, counters,
-                                                 nullptr);
+            return LUZ_KERNEL(transmittance_bvh, scene, materials, r, t_min, t_max, counters,
+                              nullptr);
         return query::transmittance_all(scene, materials, r, t_min, t_max, counters);
     });
 }
@@ -113,8 +115,8 @@ float transmittance(const BuiltScene& scene, const Materials& materials, const R
 void transmittances(const BuiltScene& scene, const Materials& materials, const SegmentLanes& s,
                     unsigned active, float* T, IntersectCounters& counters, ShadowCache* cache) {
     if (use_bvh(scene) && scene.root_leaf != 0 && !counters.timing) {
-        LUZ_KERNEL(transmittances_leaf)
-        (scene, materials, 0, scene.root_leaf, s, active, T, counters);
+        LUZ_KERNEL(transmittances_leaf, scene, materials, 0, scene.root_leaf, s, active, T,
+                   counters);
         return;
     }
     if (use_bvh(scene) && scene.root_leaf == 0) {
@@ -123,8 +125,8 @@ void transmittances(const BuiltScene& scene, const Materials& materials, const S
         for (; active != 0; active &= active - 1) {
             const int k = __builtin_ctz(active);
             T[k] = timed(counters, [&] {
-                return LUZ_KERNEL(transmittance_bvh)(scene, materials, s.ray(k), 0.0f, s.t_max[k],
-                                                     counters, &c);
+                return LUZ_KERNEL(transmittance_bvh, scene, materials, s.ray(k), 0.0f, s.t_max[k],
+                                  counters, &c);
             });
         }
         return;
