@@ -111,8 +111,9 @@ int MaterialTable::resolve(const Json& j, const KeyPath& path) {
                              "; presets: " + preset_names() + ")");
     }
     if (j.is_object()) {
-        Material m = read_material(j, path.str());
-        m.name = path.str();
+        const std::string name = path.str();
+        Material m = read_material(j, name);
+        m.name = name;
         list_.push_back(m);
         return static_cast<int>(list_.size()) - 1;
     }
