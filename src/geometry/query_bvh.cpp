@@ -62,7 +62,9 @@ float transmittance_bvh(const BuiltScene& scene, const Materials& materials, con
                              ? blocks(0, scene.root_leaf)
                              : scene.bvh.any_leaves(r, t_min, t_max, counters.bounds, blocks);
     if (!blocked && cache != nullptr) cache->lanes = 0;
-    return blocked ? 0.0f : crossings.product();
+    if (blocked) return 0.0f;
+    return crossings.lost() ? transmittance_all(scene, materials, r, t_min, t_max, counters)
+                            : crossings.product();
 }
 
 }  // namespace luz::query

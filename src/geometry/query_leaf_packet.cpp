@@ -290,7 +290,9 @@ void transmittances_leaf(const BuiltScene& scene, const Materials& materials, ui
         }
         for (unsigned lanes = open; lanes != 0; lanes &= lanes - 1) {
             const int l = __builtin_ctz(lanes);
-            T[quad + l] = crossings[l].product();
+            T[quad + l] = crossings[l].lost() ? transmittance_all(scene, materials, s.ray(quad + l),
+                                                                  0.0f, t_max[l], counters)
+                                              : crossings[l].product();
         }
     }
 }

@@ -218,8 +218,29 @@ class Crossings {
         return T * overflow_;
     }
 
+    /// Whether shape i, split into pieces in the BVH (Shape::split), is met here for the first
+    /// time: its crossings, all of them, are counted at its first piece met and never again.
+    /// Past kMaxSplit such shapes it answers true and lost() becomes true.
+    bool first_meeting(uint32_t i) {
+        for (int k = 0; k < n_split_; ++k)
+            if (split_[k] == i) return false;
+        if (n_split_ == kMaxSplit) {
+            lost_ = true;
+            return true;
+        }
+        split_[n_split_++] = i;
+        return true;
+    }
+    /// More split shapes were met than first_meeting() remembers: a shape may have been counted
+    /// twice, and the product is to be found another way (transmittance_all()).
+    bool lost() const { return lost_; }
+
   private:
     static constexpr int kMax = 32;
+    static constexpr int kMaxSplit = 32;
+    uint32_t split_[kMaxSplit];
+    int n_split_ = 0;
+    bool lost_ = false;
     int material_[kMax];
     uint32_t count_[kMax];
     float transparency_[kMax];
@@ -244,7 +265,10 @@ inline bool add_crossings(const Materials& materials, int material, uint32_t n,
     const Shape& s = scene.shapes[i];
     const bool opaque = materials[s.material].transparency <= 0;
     const uint32_t n = count_crossings(s, r, t_min, t_max, opaque, counters.primitive);
-    return n == 0 || add_crossings(materials, s.material, n, crossings);
+    if (n == 0) return true;
+    if (opaque) return false;
+    return (s.split && !crossings.first_meeting(i)) ||  // counted at another piece
+           add_crossings(materials, s.material, n, crossings);
 }
 
 /// Triangle `tri` of mesh shape i; false if it blocks (opaque).

@@ -10,6 +10,8 @@
 #include <utility>
 
 #include "geometry/query_parts.h"
+#include "geometry/shapes/cone.h"
+#include "geometry/shapes/cylinder.h"
 #include "scene/cancel.h"
 
 namespace luz {
@@ -65,6 +67,50 @@ void set_axis_lane(PrimBlock& b, int k, const Affine& M) {
     b.triangle[k] = PrimBlock::kAroundAxis;
 }
 
+bool is_axial(const Shape& s) {
+    return !s.mesh && (s.type == ShapeType::cylinder || s.type == ShapeType::cone);
+}
+
+/// Piece k of n of an axial shape (the part k/n ≤ z ≤ (k+1)/n in object space): its bounds.
+Bounds3 piece_bounds(const Shape& s, int k, int n) {
+    const float z0 = static_cast<float>(k) / static_cast<float>(n);
+    const float z1 = k + 1 == n ? 1.0f : static_cast<float>(k + 1) / static_cast<float>(n);
+    return s.type == ShapeType::cone ? shapes::cone::bounds(s, z0, z1)
+                                     : shapes::cylinder::bounds(s, z0, z1);
+}
+
+/// How many pieces an axial shape enters the BVH as: of 1 … kMaxPieces, the count whose boxes
+/// have the least surface area, each piece past the first counted as kPieceCost more (a
+/// reference costs a lane and a test). A shape along a world axis stays whole; rings' slanted
+/// cylinders (length 7 diameters) become two.
+int axis_pieces(const Shape& s) {
+    constexpr int kMaxPieces = 3;
+    constexpr double kPieceCost = 0.1;
+    int best = 1;
+    double best_cost = std::numeric_limits<double>::infinity();
+    for (int n = 1; n <= kMaxPieces; ++n) {
+        double area = 0;
+        for (int k = 0; k < n; ++k) {
+            const Vec3 d = piece_bounds(s, k, n).extent();
+            area += double(d.x) * d.y + double(d.y) * d.z + double(d.z) * d.x;  // halved
+        }
+        const double cost = area * (1.0 + kPieceCost * (n - 1));
+        if (cost < best_cost) {
+            best = n;
+            best_cost = cost;
+        }
+    }
+    return best;
+}
+
+/// Whether the leaf being laid out from slot `at` (its first `kept` slots filled) holds shape i.
+bool in_leaf(const HugeVector<PrimBlock>& blocks, uint32_t at, uint32_t kept, uint32_t i) {
+    constexpr uint32_t L = PrimBlock::kLanes;
+    for (uint32_t slot = at; slot < at + kept; ++slot)
+        if (blocks[slot / L].shape[slot % L] == i) return true;
+    return false;
+}
+
 }  // namespace
 
 BuiltScene build_scene(const SceneDesc& desc) {
@@ -117,6 +163,25 @@ void build_bvh(BuiltScene& scene) {
             boxes.push_back(scene.bounds[i]);
         }
     }
+    // Long slanted cylinders and cones enter as pieces along their axis, whose boxes hug them
+    // better (each piece tests the whole shape); not when everything fits one leaf anyway.
+    if (prims.size() > kBlockMaxLeaf) {
+        for (size_t p = 0, n = prims.size(); p < n; ++p) {
+            Shape& s = scene.shapes[prims[p].shape];
+            if (prims[p].triangle != BvhPrim::kNotTriangle || !is_axial(s)) continue;
+            const int pieces = axis_pieces(s);
+            s.split = pieces > 1;
+            for (int k = 0; k < pieces; ++k) {
+                const Bounds3 b = piece_bounds(s, k, pieces);
+                if (k == 0) {
+                    boxes[p] = b;
+                } else {
+                    prims.push_back(prims[p]);
+                    boxes.push_back(b);
+                }
+            }
+        }
+    }
     check_cancel();
     // The SAH counts a leaf's primitives in blocks of four, tested at once.
     BvhOptions options;
@@ -138,13 +203,15 @@ void build_bvh(BuiltScene& scene) {
     for (const Bvh8::Node& n : scene.bvh.nodes())
         for (uint32_t count : n.count) block_count += (count + L - 1) / L;
     blocks.reserve(block_count);
-    scene.bvh.renumber_leaves([&](uint32_t first, uint32_t count) {
+    scene.bvh.renumber_leaves([&](uint32_t first, uint32_t& count) {
         const uint32_t at = static_cast<uint32_t>(blocks.size()) * L;
+        uint32_t kept = 0;
         for (uint32_t i = 0; i < count; ++i) {
-            if (i % L == 0) blocks.push_back(padding_block());
-            PrimBlock& b = blocks.back();
             const BvhPrim& p = prims[order[first + i]];
-            const uint32_t k = i % L;
+            if (scene.shapes[p.shape].split && in_leaf(blocks, at, kept, p.shape)) continue;
+            if (kept % L == 0) blocks.push_back(padding_block());
+            PrimBlock& b = blocks.back();
+            const uint32_t k = kept++ % L;
             const Vec3 corners[3] = {p.p0, p.p1, p.p2};
             for (int c = 0; c < 3; ++c)
                 for (int a = 0; a < 3; ++a) b.v[c][a][k] = corners[c][a];
@@ -162,6 +229,7 @@ void build_bvh(BuiltScene& scene) {
                 set_axis_lane(b, static_cast<int>(k), s.transform.world_from_object);
             }
         }
+        count = kept;  // two pieces of one shape in a leaf: it is tested once
         return at;
     });
     scene.has_bvh = true;

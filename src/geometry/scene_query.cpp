@@ -14,19 +14,6 @@
 
 namespace luz {
 
-bool hit_bounds(const Bounds3& b, const Ray& r, const Vec3& inv_dir, float t_min, float t_max) {
-    for (int a = 0; a < 3; ++a) {
-        float t0 = (b.lo[a] - r.origin[a]) * inv_dir[a];
-        float t1 = (b.hi[a] - r.origin[a]) * inv_dir[a];
-        if (t0 > t1) std::swap(t0, t1);
-        // NaN (0·∞ for a ray in a slab's plane) leaves the interval unchanged.
-        t_min = t0 > t_min ? t0 : t_min;
-        t_max = t1 < t_max ? t1 : t_max;
-        if (t_min > t_max) return false;
-    }
-    return true;
-}
-
 #if defined(LUZ_QUERY_AVX2)
 bool query::avx2::active() {
     static const bool on = [] {

@@ -27,6 +27,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "geometry/hit.h"
@@ -49,7 +50,19 @@ struct IntersectCounters {
 };
 
 /// Whether ray r meets box b in (t_min, t_max) (slab test; inv_dir = 1/direction).
-bool hit_bounds(const Bounds3& b, const Ray& r, const Vec3& inv_dir, float t_min, float t_max);
+inline bool hit_bounds(const Bounds3& b, const Ray& r, const Vec3& inv_dir, float t_min,
+                       float t_max) {
+    for (int a = 0; a < 3; ++a) {
+        float t0 = (b.lo[a] - r.origin[a]) * inv_dir[a];
+        float t1 = (b.hi[a] - r.origin[a]) * inv_dir[a];
+        if (t0 > t1) std::swap(t0, t1);
+        // NaN (0·∞ for a ray in a slab's plane) leaves the interval unchanged.
+        t_min = t0 > t_min ? t0 : t_min;
+        t_max = t1 < t_max ? t1 : t_max;
+        if (t_min > t_max) return false;
+    }
+    return true;
+}
 
 /// The nearest hit of r among the scene's shapes in (t_min, t_max); hit.shape is its index
 /// (hit.part the triangle for a mesh). Ties in t go to the lowest shape, then triangle, so

@@ -35,6 +35,9 @@ struct Shape {
     Vec3 vertices[3];                  ///< triangle vertices in object space
     std::shared_ptr<const Mesh> mesh;  ///< mesh: its triangles (shared by copies of the shape)
     bool bounded = true;               ///< finite (shapes::<name>::bounded; planes are not)
+    /// In the scene's BVH as pieces along its axis, in several leaves (build_bvh(): a long
+    /// slanted cylinder or cone): a shadow ray counts its crossings once (query::Crossings).
+    bool split = false;
 
     /// World-space form, for the ray tracer's fast path (shapes/sphere.h, shapes/plane.h): set for
     /// every plane (n·p = offset, n the unit outward normal) and for a sphere whose transform is a

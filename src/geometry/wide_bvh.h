@@ -90,7 +90,8 @@ class WideBvh {
 
     /// Moves every leaf: its first slot becomes first(slot, count), called for the leaves in
     /// node order (depth first), for an owner that lays its primitives out anew (the scene's
-    /// blocks of four, geometry/prim_block.h). order() no longer applies.
+    /// blocks of four, geometry/prim_block.h); `count` is passed by reference, for an owner
+    /// that leaves some out (never all). order() no longer applies.
     template <class First>
     void renumber_leaves(First&& first) {
         for (Node& n : nodes_)

@@ -164,5 +164,79 @@ TEST(BvhEqualsBruteForce, ShadowProductsDoNotDependOnTheOrderOfCrossings) {
     }
 }
 
+/// A cylinder (or, `cone`, a frustum) of radius r from `base` along `axis` for `height`.
+ObjectDesc rod(Vec3 base, Vec3 axis, float height, float r, int material, bool cone = false) {
+    ObjectDesc o;
+    o.type = cone ? ShapeType::cone : ShapeType::cylinder;
+    o.base = base;
+    o.axis = axis;
+    o.height = height;
+    o.radius = r;
+    o.apex_radius = cone ? r / 2 : 0.0f;
+    o.caps = true;
+    o.material = material;
+    return o;
+}
+
+// Long slanted cylinders and frusta enter the BVH as pieces (Shape::split), each in its own
+// leaf: a nearest hit is found whichever piece meets the ray first, and a shadow ray counts a
+// glass rod's crossings once however many of its pieces it passes.
+TEST(BvhEqualsBruteForce, SplitGlassRods) {
+    Rng rng(11);
+    std::vector<ObjectDesc> objects;
+    for (int i = 0; i < 240; ++i) {
+        objects.push_back(rod(random_point(rng, -4, 4), random_direction(rng), uniform(rng, 1, 4),
+                              uniform(rng, 0.05f, 0.2f), i % 3, i % 4 == 0));
+    }
+    const SceneDesc desc = scene_with(objects);
+    const BuiltScene scene = build_scene(desc);
+    int split = 0;
+    for (const Shape& s : scene.shapes) split += s.split;
+    EXPECT_GT(split, 120);
+    expect_bvh_equals_brute_force(desc, 100000, false);
+}
+
+// A segment through more split glass rods than a shadow ray remembers (query::Crossings):
+// the product is then found by testing every shape, the same bits as the brute force.
+TEST(BvhEqualsBruteForce, SegmentThroughFortySplitGlassRods) {
+    std::vector<ObjectDesc> objects;
+    for (int i = 0; i < 40; ++i)  // rods along (0, 1, 1) in a row along x
+        objects.push_back(rod({i * 0.5f, -2, -2}, {0, 1, 1}, 6, 0.2f, 1 + i % 2, i % 3 == 0));
+    const SceneDesc d = scene_with(objects);
+    const BuiltScene bvh = build_scene(d);
+    for (const Shape& s : bvh.shapes) ASSERT_TRUE(s.split);
+    BuiltScene all = bvh;
+    all.geometry.accel = Accel::none;
+    Rng rng(5);
+    IntersectCounters c;
+    SegmentLanes lanes;
+    float T_lanes[kMaxPacket];
+    for (int k = 0; k < 400; ++k) {
+        // along x through every rod (at any height, so also where two pieces meet and the
+        // segment passes through both their boxes), or across a few of them
+        const float h = uniform(rng, -1.8f, 1.8f);
+        const Vec3 o{-1, h + uniform(rng, -0.05f, 0.05f), h + uniform(rng, -0.05f, 0.05f)};
+        const Vec3 to = k % 2 == 0 ? Vec3{21, o.y, o.z} : random_point(rng, 0, 6);
+        const Ray r{o, normalize(to - o)};
+        const float t_max = length(to - o);
+        const float Tb = transmittance(bvh, d.materials, r, 0.0f, t_max, c);
+        const float Ta = transmittance(all, d.materials, r, 0.0f, t_max, c);
+        ASSERT_EQ(std::memcmp(&Tb, &Ta, sizeof(float)), 0) << k << ": " << Tb << " vs " << Ta;
+        if (k % 2 == 0) {
+            ASSERT_NEAR(Ta, std::pow(0.7 * 0.35, 40), 1e-20) << k;
+        }
+        const int l = k % kMaxPacket;
+        lanes.ox[l] = r.origin.x, lanes.oy[l] = r.origin.y, lanes.oz[l] = r.origin.z;
+        lanes.dx[l] = r.direction.x, lanes.dy[l] = r.direction.y, lanes.dz[l] = r.direction.z;
+        lanes.t_max[l] = t_max;
+        if (l + 1 < kMaxPacket) continue;
+        transmittances(bvh, d.materials, lanes, (1u << kMaxPacket) - 1, T_lanes, c);
+        for (int j = 0; j < kMaxPacket; ++j) {
+            const float Tj = transmittance(all, d.materials, lanes.ray(j), 0.0f, lanes.t_max[j], c);
+            ASSERT_EQ(std::memcmp(&T_lanes[j], &Tj, sizeof(float)), 0) << k << " lane " << j;
+        }
+    }
+}
+
 }  // namespace
 }  // namespace luz

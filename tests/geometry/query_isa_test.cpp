@@ -30,7 +30,7 @@ bool cpu_has_avx2() {
 }
 #endif
 
-bool same_hit(bool f1, const Hit& a, bool f2, const Hit& b) {
+[[maybe_unused]] bool same_hit(bool f1, const Hit& a, bool f2, const Hit& b) {
     return f1 == f2 && (!f1 || (std::memcmp(&a.t, &b.t, sizeof(float)) == 0 && a.shape == b.shape &&
                                 a.part == b.part && std::memcmp(&a.u, &b.u, sizeof(float)) == 0 &&
                                 std::memcmp(&a.v, &b.v, sizeof(float)) == 0));

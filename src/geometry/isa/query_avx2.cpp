@@ -6,6 +6,7 @@
 #error "compiled by CMakeLists.txt with -mavx2 -mfma -Dluz=luz_avx2"
 #endif
 
+#include "geometry/query_all.cpp"
 #include "geometry/query_bvh.cpp"
 #include "geometry/query_leaf_packet.cpp"
 #include "geometry/query_packet.cpp"

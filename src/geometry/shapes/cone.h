@@ -4,6 +4,7 @@
 // and a frustum's top disc (part_cap1).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -33,6 +34,19 @@ struct cone {
             b.expand(ellipse_bounds(origin(M) + W, U * s.apex, V * s.apex));
         else
             b.expand(origin(M) + W);
+        return pad(b);
+    }
+
+    /// Bounds of the part z0 ≤ z ≤ z1 (0 ≤ z0 < z1 ≤ 1): the rims there, of radius 1 − m·z.
+    static Bounds3 bounds(const Shape& s, float z0, float z1) {
+        const Affine& M = s.transform.world_from_object;
+        const Vec3 U = column(M, 0), V = column(M, 1), W = column(M, 2);
+        const float m = 1.0f - s.apex;
+        Bounds3 b;
+        for (const float z : {z0, z1}) {
+            const float k = std::max(0.0f, 1.0f - m * z);  // a cone's apex: 0, a point
+            b.expand(ellipse_bounds(origin(M) + W * z, U * k, V * k));
+        }
         return pad(b);
     }
 

@@ -28,6 +28,15 @@ struct cylinder {
         return pad(b);
     }
 
+    /// Bounds of the part z0 ≤ z ≤ z1 (0 ≤ z0 < z1 ≤ 1): a piece of it in the BVH (build_bvh()).
+    static Bounds3 bounds(const Shape& s, float z0, float z1) {
+        const Affine& M = s.transform.world_from_object;
+        const Vec3 U = column(M, 0), V = column(M, 1), W = column(M, 2);
+        Bounds3 b = ellipse_bounds(origin(M) + W * z0, U, V);
+        b.expand(ellipse_bounds(origin(M) + W * z1, U, V));
+        return pad(b);
+    }
+
     static bool hit_object(const Shape& s, const Ray& ro, Nearest& n) {
         const D3 o = to_d3(ro.origin), d = to_d3(ro.direction);
         const double a = d.x * d.x + d.y * d.y;
