@@ -86,6 +86,10 @@ Bounds3 piece_bounds(const Shape& s, int k, int n) {
 int axis_pieces(const Shape& s) {
     constexpr int kMaxPieces = 3;
     constexpr double kPieceCost = 0.1;
+    // No longer than its diameter: each piece's box would keep the whole cross-section.
+    const Affine& M = s.transform.world_from_object;
+    const Vec3 U = shapes::column(M, 0), V = shapes::column(M, 1), W = shapes::column(M, 2);
+    if (dot(W, W) <= 4.0f * std::max(dot(U, U), dot(V, V))) return 1;
     int best = 1;
     double best_cost = std::numeric_limits<double>::infinity();
     for (int n = 1; n <= kMaxPieces; ++n) {
