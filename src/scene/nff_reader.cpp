@@ -15,9 +15,11 @@
 #include <vector>
 
 #include "scene/cancel.h"
+#include "scene/limits.h"
 #include "scene/message_text.h"
 #include "scene/number_text.h"
 #include "scene/obj_text.h"
+#include "scene/shape_desc.h"
 #include "scene/triangulate.h"
 
 namespace luz::loader {
@@ -92,8 +94,11 @@ struct PolygonMesh {
 
 class NffReader {
   public:
-    NffReader(std::string_view text, const std::string& file, const std::string& base_dir)
-        : statements_(text), file_(file), base_dir_(base_dir) {}
+    NffReader(std::string_view text, const std::string& file, const std::string& base_dir,
+              bool direct)
+        : statements_(text), file_(file), base_dir_(base_dir) {
+        if (direct) scene_.direct.emplace();
+    }
 
     NffScene read() {
         std::string_view line;
@@ -151,6 +156,14 @@ class NffReader {
         } else if (k == Keyword::s) {
             float s[4];
             read_numbers(tokens, s, 4, 4, file_, line(), "s");
+            if (scene_.direct) {
+                ObjectDesc o;
+                o.type = ShapeType::sphere;
+                o.center = Vec3(s[0], s[1], s[2]);
+                o.radius = direct_number(std::fabs(s[3]), kShapeSize);
+                add_direct(std::move(o), line());
+                return;
+            }
             add_object(json_object(std::pair{"type", Json("sphere")},
                                    std::pair{"center", json_vec({s[0], s[1], s[2]})},
                                    std::pair{"radius", Json(std::fabs(s[3]))}));
@@ -294,6 +307,17 @@ class NffReader {
                         format_vec(base) + " and " + format_vec(apex));
         }
         if (r0 == r1) {
+            if (scene_.direct) {
+                ObjectDesc o;
+                o.type = ShapeType::cylinder;
+                o.base = base;
+                o.axis = direct_axis(dx / height, dy / height, dz / height);
+                o.radius = direct_number(r0, kShapeSize);
+                o.height = direct_number(height, kShapeSize);
+                o.caps = false;
+                add_direct(std::move(o), first);
+                return;
+            }
             add_object(
                 json_object(std::pair{"type", Json("cylinder")}, std::pair{"base", json_vec(base)},
                             std::pair{"axis", json_array3(dx / height, dy / height, dz / height)},
@@ -307,6 +331,19 @@ class NffReader {
             std::swap(base, apex);
             std::swap(r0, r1);
             sign = -sign;
+        }
+        if (scene_.direct) {
+            ObjectDesc o;
+            o.type = ShapeType::cone;
+            o.base = base;
+            o.axis = direct_axis(sign * dx, sign * dy, sign * dz);
+            o.radius = direct_number(r0, kShapeSize);
+            o.apex_radius = direct_number(r1, kApexRadius);
+            o.height = direct_number(height, kShapeSize);
+            o.caps = false;
+            if (check_shape(o)) throw NffNotDirect{};
+            add_direct(std::move(o), first);
+            return;
         }
         add_object(json_object(std::pair{"type", Json("cone")}, std::pair{"base", json_vec(base)},
                                std::pair{"axis", json_array3(sign * dx, sign * dy, sign * dz)},
@@ -384,7 +421,35 @@ class NffReader {
             object.get_ref<Json::object_t&>().emplace_back("material", material_);
         }
         scene_.object_lines.push_back(at ? at : line());
+        if (scene_.direct) scene_.direct->order.push_back(-1 - std::int64_t(objects_.size()));
         objects_.push_back(std::move(object));
+    }
+
+    /// An object read directly (NffScene::direct), of the current material, from line `at`.
+    void add_direct(ObjectDesc o, std::size_t at) {
+        NffScene::Direct& d = *scene_.direct;
+        scene_.object_lines.push_back(at);
+        d.order.push_back(std::int64_t(d.objects.size()));
+        d.objects.push_back(std::move(o));
+        d.materials.push_back(material_);
+    }
+
+    /// x as the JSON reader reads a number within `limit` (read_float()), or NffNotDirect.
+    static float direct_number(double x, const Limit& limit) {
+        const float f = static_cast<float>(x);
+        if (!std::isfinite(x) || !std::isfinite(f) || !limit.contains(x) || !limit.contains(f))
+            throw NffNotDirect{};
+        return f;
+    }
+
+    /// (x, y, z) as the JSON reader reads a direction (read_direction()), or NffNotDirect.
+    static Vec3 direct_axis(double x, double y, double z) {
+        const Vec3 v(direct_number(x, kAnyNumber), direct_number(y, kAnyNumber),
+                     direct_number(z, kAnyNumber));
+        const float len = length(v);
+        if (v == Vec3(0.0f) || !(len > 0) || !std::isfinite(len) || !is_finite(v / len))
+            throw NffNotDirect{};
+        return v;
     }
 
     /// The settings the file implies (docs/SCENES.md#nff), the lights' intensities, the meshes.
@@ -482,8 +547,9 @@ std::size_t NffScene::line_of(std::string_view path) const {
     return 0;
 }
 
-NffScene read_nff(std::string_view text, const std::string& file, const std::string& base_dir) {
-    return NffReader(text, file, base_dir).read();
+NffScene read_nff(std::string_view text, const std::string& file, const std::string& base_dir,
+                  bool direct) {
+    return NffReader(text, file, base_dir, direct).read();
 }
 
 }  // namespace luz::loader

@@ -8,7 +8,9 @@
 #include <malloc.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <utility>
 
@@ -42,7 +44,8 @@ void give_back_free_memory() {
 /// The document (overrides already applied) → SceneDesc, its camera turned by the orbit of
 /// `animation` at `frame`. Throws KeyError.
 void read_scene(const Json& doc, const std::string& base_dir, MeshCache* meshes_read,
-                const AnimationDesc& animation, int frame, SceneDesc& scene) {
+                const AnimationDesc& animation, int frame, SceneDesc& scene,
+                const NffScene::Direct* direct = nullptr) {
     const Section top(doc, "",
                       {"image", "camera", "render", "ambient", "attenuation_k", "attenuation",
                        "lights", "materials", "objects", "animation"},
@@ -63,7 +66,32 @@ void read_scene(const Json& doc, const std::string& base_dir, MeshCache* meshes_
     MaterialTable materials(scene.materials);
     MeshFiles meshes(scene, meshes_read);
     if (const Json* j = top.get("materials")) materials.read_section(*j);
-    if (const Json* j = top.get("objects")) {
+    if (direct) {
+        // An NFF file read directly (nff_reader.h): its objects in the file's order, those of
+        // the document (its meshes) read as below, the others given their path and material.
+        const Json* j = top.get("objects");
+        std::map<std::string, int> material_of;  // by name, resolved as the document's would be
+        scene.objects.reserve(scene.objects.size() + direct->order.size());
+        for (std::size_t i = 0; i < direct->order.size(); ++i) {
+            check_cancel();
+            const std::int64_t k = direct->order[i];
+            if (k < 0) {
+                const auto m = static_cast<std::size_t>(-1 - k);
+                scene.objects.push_back(
+                    read_object(j->at(m), join("objects", i), materials, base_dir, meshes));
+                continue;
+            }
+            ObjectDesc o = direct->objects[static_cast<std::size_t>(k)];
+            o.path = join("objects", i);
+            if (const std::string& name = direct->materials[static_cast<std::size_t>(k)];
+                !name.empty()) {
+                auto [it, added] = material_of.try_emplace(name, 0);
+                if (added) it->second = materials.resolve(Json(name), KeyPath(o.path, "material"));
+                o.material = it->second;
+            }
+            scene.objects.push_back(std::move(o));
+        }
+    } else if (const Json* j = top.get("objects")) {
         if (!j->is_array()) fail("objects", "expected an array of objects, got " + describe(*j));
         scene.objects.reserve(scene.objects.size() + j->size());
         for (std::size_t i = 0; i < j->size(); ++i) {
@@ -111,20 +139,36 @@ struct Document {
     std::optional<NffScene> nff;  ///< an NFF file: its lines and meshes (its doc moved to doc)
 };
 
-/// The file's document: its JSON text parsed, or an NFF file read (docs/SCENES.md#nff).
+/// The file's document: its JSON text parsed, or an NFF file read (docs/SCENES.md#nff),
+/// `direct` if asked and it can be (NffScene::direct).
 Json read_text(std::string_view text, const std::string& file, const std::string& base_dir,
-               std::optional<NffScene>* nff) {
+               std::optional<NffScene>* nff, bool direct = false) {
     if (!is_nff_file(file)) return parse_text(text, file);
-    NffScene scene = read_nff(text, file, base_dir);
+    NffScene scene;
+    try {
+        scene = read_nff(text, file, base_dir, direct);
+    } catch (const NffNotDirect&) {  // an object out of range: the document's message
+        scene = read_nff(text, file, base_dir);
+    }
     Json doc = std::move(scene.doc);
     if (nff) *nff = std::move(scene);
     return doc;
 }
 
+/// Whether an NFF file may be read directly (NffScene::direct) under these overrides: none
+/// reaches into its objects or gives it an animation.
+bool direct_under(const std::vector<Override>& overrides) {
+    for (const Override& o : overrides) {
+        const std::string_view root = std::string_view(o.path).substr(0, o.path.find('.'));
+        if (root.empty() || root == "objects" || root == "animation") return false;
+    }
+    return true;
+}
+
 Document read_document(std::string_view text, const std::string& file, const std::string& base_dir,
                        const std::vector<Override>& overrides) {
     Document d{{}, {}, overrides, {}, {}, {}};
-    d.doc = read_text(text, file, base_dir, &d.nff);
+    d.doc = read_text(text, file, base_dir, &d.nff, direct_under(overrides));
     d.roots.reserve(overrides.size());
     for (const Override& o : overrides) d.roots.push_back(apply_override(d.doc, o));
     blaming(file, d.nff ? &*d.nff : nullptr, d.overrides, d.roots, [&] {
@@ -172,8 +216,9 @@ SceneDesc read_frame(const Document& d, const std::string& file, const std::stri
         if (!meshes) meshes = &own;
         meshes->insert(d.nff->meshes.begin(), d.nff->meshes.end());
     }
+    const NffScene::Direct* direct = d.nff && d.nff->direct ? &*d.nff->direct : nullptr;
     blaming(file, d.nff ? &*d.nff : nullptr, overrides, roots,
-            [&] { read_scene(*doc, base_dir, meshes, d.animation, frame, scene); });
+            [&] { read_scene(*doc, base_dir, meshes, d.animation, frame, scene, direct); });
     scene.animation = d.animation;
     scene.frame = frame;
     return scene;

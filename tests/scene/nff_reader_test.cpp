@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 
 #include "scene/scene_loader.h"
+#include "scene/scene_writer.h"
 
 namespace luz {
 namespace {
@@ -308,6 +310,83 @@ TEST(NffReader, BadInputNamesTheLine) {
         const std::string e = error_of(text);
         EXPECT_THAT(e, HasSubstr(message)) << text;
         EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+    }
+}
+
+/// Every statement kind, objects before the first `f` and after a material comes back.
+const std::string kEveryObject = kView +
+                                 "s 5 5 5 1\n"
+                                 "f 1 0 0 1 0 1 0 1\n"
+                                 "s 0 0 0 -1\n"
+                                 "c 0 0 0 1 0 1 0 1\n"
+                                 "c\n0 0 0 1\n0 1 1 0.5\n"
+                                 "f 0 1 0 0.5 0.5 20 0.3 1.5\n"
+                                 "c 0 2 0 0.5 0 0 0 1\n"
+                                 "p 3\n0 0 0\n1 0 0\n0 1 0\n"
+                                 "s 1 1 1 0.5\n"
+                                 "f 1 0 0 1 0 1 0 1\n"
+                                 "pp 3\n0 0 1 0 0 1\n1 0 1 0 0 1\n0 1 1 0 0 1\n"
+                                 "c 3 3 3 0.25 3 3 4 0\n";
+
+// Spheres, cylinders and cones skip the document (NffScene::direct) in an order list beside
+// its objects, which are then the meshes alone.
+TEST(NffReader, DirectReadingKeepsTheObjectsOrder) {
+    const loader::NffScene nff = loader::read_nff(kEveryObject, "dir/t.nff", "dir", true);
+    ASSERT_TRUE(nff.direct);
+    EXPECT_EQ(nff.direct->objects.size(), 7u);
+    EXPECT_EQ(nff.doc["objects"].size(), 2u);  // the meshes of f2 and f1
+    EXPECT_EQ(nff.direct->order, (std::vector<std::int64_t>{0, 1, 2, 3, 4, -1, 5, -2, 6}));
+    EXPECT_EQ(nff.direct->materials,
+              (std::vector<std::string>{"", "f1", "f1", "f1", "f2", "f2", "f1"}));
+    EXPECT_EQ(nff.object_lines.size(), 9u);
+    EXPECT_FALSE(loader::read_nff(kEveryObject, "dir/t.nff", "dir").direct);
+}
+
+// Read directly or through the document (as when an override reaches into the objects), the
+// scene is the same, object for object, on every SPD scene and on a file of every statement.
+TEST(NffReader, ReadDirectlyTheSceneIsTheDocumentsOwn) {
+    std::vector<std::pair<std::string, std::string>> files = {{"dir/t.nff", kEveryObject}};
+    for (const char* name : {"balls", "gears", "mount", "rings", "teapot", "tetra", "tree"}) {
+        const std::string path = std::string(LUZ_SOURCE_DIR) + "/scenes/spd/" + name + ".nff";
+        std::ifstream in(path);
+        std::stringstream text;
+        text << in.rdbuf();
+        files.push_back({path, text.str()});
+    }
+    for (const auto& [label, text] : files) {
+        const SceneDesc direct = parse_scene(text, label, "dir", {});
+        ASSERT_FALSE(direct.objects.empty());
+        const std::string type(shape_name(direct.objects[0].type));
+        const SceneDesc doc =
+            parse_scene(text, label, "dir", {{"objects.0.type", '"' + type + '"'}});
+        ASSERT_EQ(direct.objects.size(), doc.objects.size()) << label;
+        for (size_t i = 0; i < doc.objects.size(); ++i) {
+            ObjectDesc a = direct.objects[i], b = doc.objects[i];
+            ASSERT_EQ(bool(a.mesh), bool(b.mesh)) << label << " " << i;
+            if (a.mesh) {  // two reads, two meshes: the same triangles
+                EXPECT_EQ(a.mesh->positions, b.mesh->positions) << label << " " << i;
+                EXPECT_EQ(a.mesh->position, b.mesh->position) << label << " " << i;
+                EXPECT_EQ(a.mesh->normals, b.mesh->normals) << label << " " << i;
+                a.mesh = b.mesh = nullptr;
+            }
+            ASSERT_TRUE(a == b) << label << " " << i << " " << a.path;
+        }
+        EXPECT_EQ(scene_to_json(direct, "dir"), scene_to_json(doc, "dir")) << label;
+    }
+}
+
+// An object the document would refuse is read through it, for its message: the same as ever.
+TEST(NffReader, ReadDirectlyABadObjectGetsTheDocumentsMessage) {
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {kView + "s 0 0 0 1\ns 0 0 0 1e-50\n", "dir/t.nff:9: objects.1.radius: must be > 0"},
+        {kView + "s 0 0 0 1\nc 0 0 0 1e-50 0 1 0 1e-50\n",
+         "dir/t.nff:9: objects.1.radius: must be > 0"},
+        {kView + "c 0 0 0 1 3e38 3e38 0 0.5\n",
+         "dir/t.nff:8: objects.0.height: must be a finite number (a float"},
+    };
+    for (const auto& [text, message] : cases) {
+        EXPECT_THROW(loader::read_nff(text, "dir/t.nff", "dir", true), loader::NffNotDirect);
+        EXPECT_THAT(error_of(text), HasSubstr(message)) << text;
     }
 }
 
