@@ -65,6 +65,8 @@ void read_bytes(png_structp png, png_bytep data, size_t n) {
 /// Rows per band of the PNG image data (PngBands::kBandRows).
 constexpr int kBandRows = PngBands::kBandRows;
 
+}  // namespace
+
 /// One band of the PNG image data (PngBands): its rows quantized by encode_8bit, each
 /// prefixed by filter type 1 (Sub: every byte minus the one 3 to its left), deflated at level 3
 /// on its own; every band but the image's last ends with a sync flush (on a byte boundary), so
@@ -77,7 +79,9 @@ struct PngBand {
     uLong adler = 1;
     size_t length = 0;  // filtered bytes
     bool ok = false;
-};
+};  // outside the anonymous namespace: PngBands::Bands, which is not in one, holds a list of them
+
+namespace {
 
 /// Band `band` from `rows` rows of `img` starting at its row `first`; `last`: the image's last.
 void deflate_band(const Image& img, int first, int rows, bool last, Encoding e, PngBand& band) {
