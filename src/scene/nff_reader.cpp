@@ -15,11 +15,10 @@
 #include <vector>
 
 #include "scene/cancel.h"
-#include "scene/limits.h"
 #include "scene/message_text.h"
+#include "scene/nff_shapes.h"
 #include "scene/number_text.h"
 #include "scene/obj_text.h"
-#include "scene/shape_desc.h"
 #include "scene/triangulate.h"
 
 namespace luz::loader {
@@ -32,28 +31,6 @@ using obj_text::Tokens;
 
 /// Most vertices one polygon may announce (far beyond any SPD polygon).
 constexpr double kMaxPolygonVertices = 1e8;
-
-/// [x, y, z], and an object's keys in order: built element by element, as an initializer list
-/// would copy each value (and each key–value pair) through temporaries, thousands of times.
-template <class T>
-Json json_array3(T x, T y, T z) {
-    Json a(Json::value_t::array);
-    auto& elements = a.get_ref<Json::array_t&>();
-    elements.reserve(3);
-    elements.emplace_back(x);
-    elements.emplace_back(y);
-    elements.emplace_back(z);
-    return a;
-}
-Json json_vec(const Vec3& v) { return json_array3(v.x, v.y, v.z); }
-template <class... Value>
-Json json_object(std::pair<const char*, Value>... kv) {
-    Json o(Json::value_t::object);
-    auto& members = o.get_ref<Json::object_t&>();
-    members.reserve(sizeof...(kv) + 1);  // and the material add_object() appends
-    (members.emplace_back(kv.first, std::move(kv.second)), ...);
-    return o;
-}
 
 /// NFF's statements, by keyword.
 enum class Keyword { v, b, l, f, s, c, p, pp, unknown };
@@ -156,17 +133,10 @@ class NffReader {
         } else if (k == Keyword::s) {
             float s[4];
             read_numbers(tokens, s, 4, 4, file_, line(), "s");
-            if (scene_.direct) {
-                ObjectDesc o;
-                o.type = ShapeType::sphere;
-                o.center = Vec3(s[0], s[1], s[2]);
-                o.radius = direct_number(std::fabs(s[3]), kShapeSize);
-                add_direct(std::move(o), line());
-                return;
-            }
-            add_object(json_object(std::pair{"type", Json("sphere")},
-                                   std::pair{"center", json_vec({s[0], s[1], s[2]})},
-                                   std::pair{"radius", Json(std::fabs(s[3]))}));
+            NffShape sphere;
+            sphere.point = Vec3(s[0], s[1], s[2]);
+            sphere.radius = std::fabs(s[3]);
+            add_shape(sphere, line());
         } else if (k == Keyword::c) {
             cone(tokens);
         } else {
@@ -306,50 +276,28 @@ class NffReader {
                     "c: base and apex must be distinct points at a finite distance, got " +
                         format_vec(base) + " and " + format_vec(apex));
         }
-        if (r0 == r1) {
-            if (scene_.direct) {
-                ObjectDesc o;
-                o.type = ShapeType::cylinder;
-                o.base = base;
-                o.axis = direct_axis(dx / height, dy / height, dz / height);
-                o.radius = direct_number(r0, kShapeSize);
-                o.height = direct_number(height, kShapeSize);
-                o.caps = false;
-                add_direct(std::move(o), first);
-                return;
-            }
-            add_object(
-                json_object(std::pair{"type", Json("cylinder")}, std::pair{"base", json_vec(base)},
-                            std::pair{"axis", json_array3(dx / height, dy / height, dz / height)},
-                            std::pair{"radius", Json(r0)}, std::pair{"height", Json(height)},
-                            std::pair{"caps", Json(false)}),
-                first);
-            return;
-        }
+        NffShape shape;
+        shape.type = ShapeType::cylinder;
+        shape.radius = r0;
+        shape.height = height;
         double sign = 1 / height;
-        if (r1 > r0) {  // the wider end is the cone's base
-            std::swap(base, apex);
-            std::swap(r0, r1);
-            sign = -sign;
+        if (r0 != r1) {
+            shape.type = ShapeType::cone;
+            if (r1 > r0) {  // the wider end is the cone's base
+                std::swap(base, apex);
+                std::swap(r0, r1);
+                sign = -sign;
+            }
+            shape.radius = r0;
+            shape.apex_radius = r1;
         }
-        if (scene_.direct) {
-            ObjectDesc o;
-            o.type = ShapeType::cone;
-            o.base = base;
-            o.axis = direct_axis(sign * dx, sign * dy, sign * dz);
-            o.radius = direct_number(r0, kShapeSize);
-            o.apex_radius = direct_number(r1, kApexRadius);
-            o.height = direct_number(height, kShapeSize);
-            o.caps = false;
-            if (check_shape(o)) throw NffNotDirect{};
-            add_direct(std::move(o), first);
-            return;
-        }
-        add_object(json_object(std::pair{"type", Json("cone")}, std::pair{"base", json_vec(base)},
-                               std::pair{"axis", json_array3(sign * dx, sign * dy, sign * dz)},
-                               std::pair{"radius", Json(r0)}, std::pair{"apex_radius", Json(r1)},
-                               std::pair{"height", Json(height)}, std::pair{"cap", Json(false)}),
-                   first);
+        shape.point = base;
+        // a cylinder's axis as dx/height, a cone's as dx·(±1/height): the document's own values
+        const bool cylinder = shape.type == ShapeType::cylinder;
+        shape.axis[0] = cylinder ? dx / height : sign * dx;
+        shape.axis[1] = cylinder ? dy / height : sign * dy;
+        shape.axis[2] = cylinder ? dz / height : sign * dz;
+        add_shape(shape, first);
     }
 
     /// `p N` (N lines x y z) or `pp N` (N lines x y z nx ny nz), triangulated into the mesh of
@@ -425,31 +373,18 @@ class NffReader {
         objects_.push_back(std::move(object));
     }
 
-    /// An object read directly (NffScene::direct), of the current material, from line `at`.
-    void add_direct(ObjectDesc o, std::size_t at) {
+    /// A sphere, cylinder or cone of the current material, from line `at`: read directly
+    /// (NffScene::direct) or into the document.
+    void add_shape(const NffShape& shape, std::size_t at) {
+        if (!scene_.direct) {
+            add_object(shape_json(shape), at);
+            return;
+        }
         NffScene::Direct& d = *scene_.direct;
         scene_.object_lines.push_back(at);
         d.order.push_back(std::int64_t(d.objects.size()));
-        d.objects.push_back(std::move(o));
+        d.objects.push_back(shape_object(shape));
         d.materials.push_back(material_);
-    }
-
-    /// x as the JSON reader reads a number within `limit` (read_float()), or NffNotDirect.
-    static float direct_number(double x, const Limit& limit) {
-        const float f = static_cast<float>(x);
-        if (!std::isfinite(x) || !std::isfinite(f) || !limit.contains(x) || !limit.contains(f))
-            throw NffNotDirect{};
-        return f;
-    }
-
-    /// (x, y, z) as the JSON reader reads a direction (read_direction()), or NffNotDirect.
-    static Vec3 direct_axis(double x, double y, double z) {
-        const Vec3 v(direct_number(x, kAnyNumber), direct_number(y, kAnyNumber),
-                     direct_number(z, kAnyNumber));
-        const float len = length(v);
-        if (v == Vec3(0.0f) || !(len > 0) || !std::isfinite(len) || !is_finite(v / len))
-            throw NffNotDirect{};
-        return v;
     }
 
     /// The settings the file implies (docs/SCENES.md#nff), the lights' intensities, the meshes.

@@ -13,6 +13,7 @@
 #include "luz/object_desc.h"
 #include "scene/json_text.h"
 #include "scene/mesh_data.h"
+#include "scene/nff_shapes.h"  // NffNotDirect
 
 namespace luz::loader {
 
@@ -39,10 +40,6 @@ struct NffScene {
     /// The line of `path` or of the nearest key path above it that came from a line; 0: none.
     std::size_t line_of(std::string_view path) const;
 };
-
-/// Thrown by read_nff(…, direct = true) when an object the JSON reader would refuse was read:
-/// the file is then to be read again without `direct`, for that reader's message.
-struct NffNotDirect {};
 
 /// Reads NFF text. `file` names it in messages; `base_dir` is its folder (mesh objects name
 /// their polygons as `FILE-NAME#fK`, resolved against it as a mesh file is). Throws InputError
