@@ -38,6 +38,9 @@ float transmittance_bvh(const BuiltScene& scene, const std::vector<Material>& ma
                         ShadowCache* cache);
 void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_min, float t_max,
                       Hit* hits, bool* found, IntersectCounters& counters);
+void transmittances_bvh(const BuiltScene& scene, const std::vector<Material>& materials,
+                        const SegmentLanes& s, unsigned active, float* T,
+                        IntersectCounters& counters, ShadowCache& cache);
 void transmittances_leaf(const BuiltScene& scene, const std::vector<Material>& materials,
                          uint32_t first, uint32_t count, const SegmentLanes& s, unsigned active,
                          float* T, IntersectCounters& counters);

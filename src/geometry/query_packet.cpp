@@ -167,4 +167,56 @@ void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_m
     answer();
 }
 
+void transmittances_bvh(const BuiltScene& scene, const Materials& materials, const SegmentLanes& s,
+                        unsigned active, float* T, IntersectCounters& counters,
+                        ShadowCache& cache) {
+    Ray r[kPacketLanes];
+    WatertightRay w[kPacketLanes];
+    Crossings crossings[kPacketLanes];
+    for (int k = 0; k < kPacketLanes; ++k) r[k] = s.ray(k);  // (lanes not active: never read)
+    // As transmittance_bvh(), each segment first against the unbounded shapes.
+    unsigned open = 0;  // the segments left for the traversal
+    for (unsigned left = active; left != 0; left &= left - 1) {
+        const int k = __builtin_ctz(left);
+        T[k] = 0.0f;
+        const auto crosses_unbounded = [&] {
+            for (uint32_t i : scene.unbounded)
+                if (!cross_shape(scene, materials, i, r[k], 0.0f, s.t_max[k], crossings[k],
+                                 counters))
+                    return false;
+            return true;
+        };
+        if (!crosses_unbounded()) continue;
+        if (scene.mesh_triangles) w[k] = prepare_watertight(r[k]);
+        open |= 1u << k;
+    }
+    // The segments `lanes` against the leaf of slots first … first + count − 1: those it blocks
+    // (the cache then holds the block that blocked the last of them).
+    const auto leaf = [&](uint32_t first, uint32_t count, unsigned lanes) {
+        unsigned blocked = 0;
+        for (; lanes != 0; lanes &= lanes - 1) {
+            const int k = __builtin_ctz(lanes);
+            for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned l) {
+                if (cross_block(scene, materials, b, l, r[k], w[k], 0.0f, s.t_max[k], crossings[k],
+                                counters))
+                    return true;
+                cache.block = static_cast<uint32_t>(&b - scene.bvh_blocks.data());
+                cache.lanes = l;
+                blocked |= 1u << k;
+                return false;
+            });
+        }
+        return blocked;
+    };
+    const RayPacket packet(r, kPacketLanes);
+    const unsigned blocked =
+        any_packet(scene.bvh, packet, open, 0.0f, s.t_max, counters.bounds, leaf);
+    for (unsigned left = open & ~blocked; left != 0; left &= left - 1) {
+        const int k = __builtin_ctz(left);
+        T[k] = crossings[k].lost()
+                   ? transmittance_all(scene, materials, r[k], 0.0f, s.t_max[k], counters)
+                   : crossings[k].product();
+    }
+}
+
 }  // namespace luz::query

@@ -338,6 +338,12 @@ float transmittance_bvh(const BuiltScene& scene, const Materials& materials, con
 void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_min, float t_max,
                       Hit* hits, bool* found, IntersectCounters& counters);
 
+/// transmittance_bvh() of the segments `active` of s over (0, t_max[k]) into T[k], traversed as
+/// one packet (query_packet.cpp). `cache`, empty, receives the block that blocked the last
+/// segment blocked (none: stays empty), as transmittance_bvh() would leave it.
+void transmittances_bvh(const BuiltScene& scene, const Materials& materials, const SegmentLanes& s,
+                        unsigned active, float* T, IntersectCounters& counters, ShadowCache& cache);
+
 /// Every shape and mesh triangle in scene order, shapes behind their bounds (query_all.cpp).
 bool nearest_hit_all(const BuiltScene& scene, const Ray& r, float t_min, float t_max, Hit& hit,
                      IntersectCounters& counters);

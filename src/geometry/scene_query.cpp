@@ -100,7 +100,8 @@ float transmittance(const BuiltScene& scene, const Materials& materials, const R
 }
 
 void transmittances(const BuiltScene& scene, const Materials& materials, const SegmentLanes& s,
-                    unsigned active, float* T, IntersectCounters& counters, ShadowCache* cache) {
+                    unsigned active, float* T, IntersectCounters& counters, ShadowCache* cache,
+                    bool coherent) {
     if (use_bvh(scene) && scene.root_leaf != 0 && !counters.timing) {
         LUZ_KERNEL(transmittances_leaf, scene, materials, 0, scene.root_leaf, s, active, T,
                    counters);
@@ -109,6 +110,15 @@ void transmittances(const BuiltScene& scene, const Materials& materials, const S
     if (use_bvh(scene) && scene.root_leaf == 0) {
         ShadowCache own;  // the segments of this call alone
         ShadowCache& c = cache ? *cache : own;
+        // Coherent segments go down together while lit points come in a run (the cache empty:
+        // the last segments went unblocked); behind an occluder, its cached block first.
+        if (coherent && c.lanes == 0) {
+            timed(counters, [&] {
+                LUZ_KERNEL(transmittances_bvh, scene, materials, s, active, T, counters, c);
+                return true;
+            });
+            return;
+        }
         for (; active != 0; active &= active - 1) {
             const int k = __builtin_ctz(active);
             T[k] = timed(counters, [&] {

@@ -122,9 +122,12 @@ struct ShadowCache {
 /// `active` (bit k), bit for bit. When the BVH is one leaf (BuiltScene::root_leaf) four
 /// segments meet each of its spheres and each plane at once (query_leaf_packet.cpp); otherwise
 /// one by one down the BVH, each first against the occluder of the one before (`cache`, when
-/// given, carries it from call to call: the segments of one light).
+/// given, carries it from call to call: the segments of one light) — or, for `coherent`
+/// segments (from neighbouring points: the shadow rays of a packet of camera hits) while the
+/// cache is empty (lit points come in runs), all of them down the BVH as one packet
+/// (query_packet.cpp), a node's tests side by side.
 void transmittances(const BuiltScene& scene, const Materials& materials, const SegmentLanes& s,
                     unsigned active, float* T, IntersectCounters& counters,
-                    ShadowCache* cache = nullptr);
+                    ShadowCache* cache = nullptr, bool coherent = false);
 
 }  // namespace luz

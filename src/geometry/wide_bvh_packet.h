@@ -2,7 +2,9 @@
 // ray, in lock step): every child box is tested for all the packet's rays side by side, with
 // per ray the very arithmetic of hit_wide() (the same boxes hit, at the same entry distances),
 // and a child is visited by the rays that hit it. Coherent rays (neighbouring camera rays) share
-// most nodes, so a node's fetch, its tests and the stack work serve eight rays.
+// most nodes, so a node's fetch, its tests and the stack work serve eight rays. any_packet() is
+// the same for shadow rays (WideBvh::any_leaves() in lock step): leaves in any order, a ray
+// leaving the packet once something blocks it.
 //
 //     float t_max[8] = {...};  // per ray, lowered by test() as hits are found
 //     nearest_packet(bvh, packet, packet.all(), t_min, t_max, box_tests,
@@ -119,6 +121,63 @@ void nearest_packet(const Bvh8& bvh, const RayPacket& p, unsigned active, float 
             s.lanes &= lane_bits(lane_le(s.entry, with_margin(load_lanes(t_max))));
             if (s.lanes != 0) {
                 cur = s;
+                break;
+            }
+        }
+    }
+}
+
+/// For each ray of `active`, as bvh.any_leaves() would for it alone: visit(first, count, lanes)
+/// for every leaf whose box rays `lanes` meet in (t_min, t_max[lane]) (with the same margin),
+/// leaves in no particular order, until visit() has settled every ray: it returns the rays it
+/// settles (a shadow ray blocked), which leave the packet. Returns the rays settled. Adds 8 per
+/// node per ray to box_tests, as the single-ray traversal counts.
+template <class Visit>
+unsigned any_packet(const Bvh8& bvh, const RayPacket& p, unsigned active, float t_min,
+                    const float* t_max, uint64_t& box_tests, Visit&& visit) {
+    using namespace packet_detail;
+    const Bvh8::Nodes& nodes = bvh.nodes();
+    if (nodes.empty() || active == 0) return 0;
+    const BoxRays rays(p);
+    const Lane8f t_min8 = lanes(t_min);
+    const Lane8f limit = with_margin(load_lanes(t_max));
+    struct Entry {
+        uint32_t child, count, lanes;
+    };
+    constexpr int kStack = 7 * Bvh::kMaxDepth + 4;
+    Entry stack[kStack];
+    int top = 0;
+    unsigned open = active;  // not settled yet
+    Entry cur{0, 0, active};
+    for (;;) {
+        if (cur.count > 0) {
+            open &= ~visit(cur.child, cur.count, cur.lanes);
+            if (open == 0) return active;
+        } else {
+            const Bvh8::Node& n = nodes[cur.child];
+            box_tests += 8 * static_cast<uint64_t>(lane_count(cur.lanes));
+            const Lane8i in_packet = lane_mask(cur.lanes);
+            Entry h[8];
+            int m = 0;
+            for (int k = 0; k < 8; ++k) {
+                if (n.count[k] == 0 && n.child[k] == Bvh8::Node::kUnused) continue;
+                Lane8f entry;
+                const unsigned hit =
+                    lane_bits(hit_child(n, k, rays, t_min8, limit, entry) & in_packet);
+                if (hit != 0) h[m++] = {n.child[k], n.count[k], hit};
+            }
+            if (m > 0) {
+                for (int i = m - 1; i > 0; --i) stack[top++] = h[i];
+                cur = h[0];
+                continue;
+            }
+        }
+        // next entry from the stack, with only its rays not settled yet
+        for (;;) {
+            if (top == 0) return active & ~open;
+            const Entry& s = stack[--top];
+            if ((s.lanes & open) != 0) {
+                cur = {s.child, s.count, s.lanes & open};
                 break;
             }
         }

@@ -42,8 +42,8 @@ std::vector<ShadowCache>& batch_shadow_caches() {
 
 }  // namespace
 
-void BatchTracer::shade_hits(const Ray* rays, const Hit* hits, unsigned which, bool timed,
-                             TraceCounters& counters, ShadedHit* out) const {
+void BatchTracer::shade_hits(const Ray* rays, const Hit* hits, unsigned which, bool coherent,
+                             bool timed, TraceCounters& counters, ShadedHit* out) const {
     const BuiltScene& scene = ref_.scene();
     const Settings& settings = ref_.settings();
     // The points as Whitted::local() builds them (a ShadingPoint each), by component; the other
@@ -97,7 +97,8 @@ void BatchTracer::shade_hits(const Ray* rays, const Hit* hits, unsigned which, b
                 ++shadow_rays[__builtin_ctz(left)];
             alignas(32) float T[kMaxPacket] = {};
             query(timed, counters, [&] {
-                transmittances(scene, settings.materials, seg, lit, T, counters.tests, &caches[j]);
+                transmittances(scene, settings.materials, seg, lit, T, counters.tests, &caches[j],
+                               coherent);
             });
             return load_lanes(T);
         };
@@ -255,7 +256,7 @@ void BatchTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit*
             }
             if (which == 0) continue;
             ShadedHit* const s = arrays.group_shaded;
-            shade_hits(r, h, which, timed, counters, s);
+            shade_hits(r, h, which, false, timed, counters, s);
             for (unsigned left = which; left != 0; left &= left - 1) {
                 const int j = __builtin_ctz(left);
                 TreeRay& node = nodes[group[j]];
@@ -332,7 +333,7 @@ void BatchTracer::samples(const float* px, const float* py, int n, TraceCounters
             }
             // The hits shaded side by side, their shadow rays too.
             if (which != 0 && !ref_.cancelled()) {
-                shade_hits(camera_rays + p, hits + p, which, timed, counters, shaded + p);
+                shade_hits(camera_rays + p, hits + p, which, true, timed, counters, shaded + p);
                 packed |= static_cast<uint64_t>(which) << p;
             }
         }

@@ -1,6 +1,7 @@
-// Shadow segments down a BVH deeper than one leaf (transmittances() with a ShadowCache): every
-// transmittance bit for bit what transmittance() gives segment by segment, whatever the cache
-// holds — opaque and transparent occluders, blocks mixing both, a light's cache shared by calls.
+// Shadow segments down a BVH deeper than one leaf (transmittances() with a ShadowCache, one by one
+// or as a packet): every transmittance bit for bit what transmittance() gives segment by segment,
+// whatever the cache holds — opaque and transparent occluders, blocks mixing both, a light's
+// cache shared by calls.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -48,7 +49,7 @@ TEST(ShadowBatch, SegmentsWithTheLastOccluderFirstGiveTransmittanceBitForBit) {
     const std::vector<Vec3> lights = {{0, 0, 0}, {9, 8, 7}, {-3, 20, 2}};
     std::vector<ShadowCache> caches(lights.size());  // one per light, kept from call to call
     IntersectCounters batched, one_by_one;
-    int mismatches = 0, partial = 0, blocked = 0, open = 0;
+    int mismatches = 0, partial = 0, blocked = 0, open = 0, packets = 0;
     for (int call = 0; call < 6000; ++call) {
         const size_t j = static_cast<size_t>(call) % lights.size();
         // runs of neighbouring points, now and then a scattered packet or another light's cache
@@ -59,8 +60,12 @@ TEST(ShadowBatch, SegmentsWithTheLastOccluderFirstGiveTransmittanceBitForBit) {
         ShadowCache* cache = call % 13 == 6   ? &caches[(j + 1) % lights.size()]
                              : call % 17 == 8 ? nullptr
                                               : &caches[j];
+        // as the ray tracer says: the shadow rays of camera hits are coherent (a packet goes
+        // down the BVH together while the cache is empty), the others are not
+        const bool coherent = call % 4 != 1;
+        packets += coherent && (cache == nullptr || cache->lanes == 0);
         float T[kMaxPacket];
-        transmittances(scene, desc.materials, s, active, T, batched, cache);
+        transmittances(scene, desc.materials, s, active, T, batched, cache, coherent);
         for (int k = 0; k < kMaxPacket; ++k) {
             if (!(active >> k & 1u)) continue;
             const float expected =
@@ -78,6 +83,7 @@ TEST(ShadowBatch, SegmentsWithTheLastOccluderFirstGiveTransmittanceBitForBit) {
     EXPECT_GT(partial, 3000) << "segments through glass only";
     EXPECT_GT(blocked, 3000);
     EXPECT_GT(open, 3000);
+    EXPECT_GT(packets, 1000) << "calls down the BVH as one packet";
     // The cache spares traversals: fewer box tests than segment by segment.
     EXPECT_LT(batched.bounds, one_by_one.bounds);
 }

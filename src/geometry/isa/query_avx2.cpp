@@ -65,6 +65,15 @@ void nearest_hits_bvh(const BuiltScene& scene, const Ray* rays, int n, float t_m
                                       twin<luz_avx2::IntersectCounters>(counters));
 }
 
+void transmittances_bvh(const BuiltScene& scene, const std::vector<Material>& materials,
+                        const SegmentLanes& s, unsigned active, float* T,
+                        IntersectCounters& counters, ShadowCache& cache) {
+    luz_avx2::query::transmittances_bvh(
+        twin<luz_avx2::BuiltScene>(scene), twin<Materials2>(materials),
+        twin<luz_avx2::SegmentLanes>(s), active, T, twin<luz_avx2::IntersectCounters>(counters),
+        twin<luz_avx2::ShadowCache>(cache));
+}
+
 void transmittances_leaf(const BuiltScene& scene, const std::vector<Material>& materials,
                          uint32_t first, uint32_t count, const SegmentLanes& s, unsigned active,
                          float* T, IntersectCounters& counters) {
