@@ -120,13 +120,23 @@ struct TreeRay {
     Ray ray;
     float weight = 1.0f;  ///< the product of the coefficients that scale it (Whitted::trace())
     int depth = 0;
-    int sample = 0;                              ///< whose tree: the sample's index in the batch
+    bool refracted = false;  ///< spawned by refraction (else by reflection, or a camera ray)
+    int sample = 0;          ///< whose tree: the sample's index in the batch
     int reflection = kNone, refraction = kNone;  ///< the children's indices
     float kr = 0, kt = 0;  ///< the coefficients that scale them (m.reflection, m.transparency)
     bool traced = false;   ///< c and distance known (a camera hit, or traced depth-first)
     float distance = kInfinity;
     Rgb c{0.0f};  ///< the local colour, then all of the colour Whitted::trace() returns
 };
+
+/// Whether rays r[0 … q) go one way, each within 60° of the first: the secondary rays of
+/// neighbouring hits on one surface, such as those a glass sphere refracts, which go down the
+/// BVH faster as a packet; those a small sphere's curve spreads apart, one by one.
+bool one_way(const Ray* r, int q) {
+    for (int j = 1; j < q; ++j)
+        if (dot(r[j].direction, r[0].direction) < 0.5f) return false;
+    return true;
+}
 
 /// The arrays a batch of samples() and its trees fill, kept per thread: not zeroed for every
 /// batch and level.
@@ -140,7 +150,8 @@ struct BatchArrays {
     Ray group_rays[kMaxPacket];
     Hit group_hits[kMaxPacket];
     ShadedHit group_shaded[kMaxPacket];
-    std::vector<TreeRay> nodes;  ///< the trees (trace_trees())
+    std::vector<TreeRay> nodes;   ///< the trees (trace_trees())
+    std::vector<uint32_t> level;  ///< a level's rays to trace, in the order they are traced
 };
 
 BatchArrays& batch_arrays() {
@@ -172,7 +183,8 @@ void BatchTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit*
         const float weight = nodes[i].weight;
         if (!rules.descends(depth, m)) return;
         const Bounce b = bounce(D, sp, m);
-        const auto child = [&](const Vec3& dir, float coefficient, uint64_t& count) {
+        const auto child = [&](const Vec3& dir, float coefficient, uint64_t& count,
+                               bool refracted) {
             const float w = weight * coefficient;
             if (!rules.traced(w)) return TreeRay::kSkipped;
             ++count;
@@ -182,6 +194,7 @@ void BatchTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit*
             r.ray = spawn_ray(sp.P, sp.Ng, dir);
             r.weight = w;
             r.depth = depth + 1;
+            r.refracted = refracted;
             r.sample = sample;
             if (!keep) {  // too many to keep for the next level: depth-first
                 const uint64_t before = work_of(counters);
@@ -193,11 +206,11 @@ void BatchTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit*
             return static_cast<int>(nodes.size() - 1);
         };
         if (m.reflection > 0) {
-            nodes[i].reflection = child(b.reflected, m.reflection, counters.reflection);
+            nodes[i].reflection = child(b.reflected, m.reflection, counters.reflection, false);
             nodes[i].kr = m.reflection;
         }
         if (m.transparency > 0) {
-            nodes[i].refraction = child(b.refracted, m.transparency, counters.refraction);
+            nodes[i].refraction = child(b.refracted, m.transparency, counters.refraction, true);
             nodes[i].kt = m.transparency;
         }
     };
@@ -213,17 +226,24 @@ void BatchTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit*
         const int k = nodes[i].sample;
         spawn(i, rays[k].direction, shaded[k].sp, material(hits[k]));
     }
-    // Level by level: the rays of one depth eight at a time, found and shaded side by side.
+    // Level by level: the rays of one depth eight at a time, found and shaded side by side,
+    // those whose last bounce reflected first, then those refracted (neighbours alike: a glass
+    // sphere refracts neighbouring rays into neighbouring rays, a packet goes down together).
+    std::vector<uint32_t>& level = arrays.level;
     for (size_t begin = roots, end; begin < nodes.size(); begin = end) {
         end = nodes.size();
-        for (size_t i = begin; i < end;) {
+        level.clear();
+        for (const bool refracted : {false, true})
+            for (size_t i = begin; i < end; ++i)
+                if (!nodes[i].traced && nodes[i].refracted == refracted)
+                    level.push_back(static_cast<uint32_t>(i));
+        for (size_t i = 0; i < level.size();) {
             size_t group[kMaxPacket];
             Ray* const r = arrays.group_rays;
             int q = 0;
-            for (; i < end && q < kMaxPacket; ++i) {
-                if (nodes[i].traced) continue;
-                group[q] = i;
-                r[q++] = nodes[i].ray;
+            for (; i < level.size() && q < kMaxPacket; ++i) {
+                group[q] = level[i];
+                r[q++] = nodes[level[i]].ray;
             }
             if (q == 0) break;
             if (ref_.cancelled()) {  // as Whitted::trace()
@@ -233,7 +253,10 @@ void BatchTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit*
             Hit* const h = arrays.group_hits;
             bool found[kMaxPacket] = {};
             query(timed, counters, [&] {
-                nearest_hits_scattered(scene, r, q, 0.0f, kInfinity, h, found, counters.tests);
+                if (one_way(r, q))
+                    nearest_hits(scene, r, q, 0.0f, kInfinity, h, found, counters.tests);
+                else
+                    nearest_hits_scattered(scene, r, q, 0.0f, kInfinity, h, found, counters.tests);
             });
             unsigned which = 0;  // the rays that hit an object, shaded below
             for (int j = 0; j < q; ++j) {
