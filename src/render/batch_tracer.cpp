@@ -252,8 +252,9 @@ void BatchTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit*
             }
             Hit* const h = arrays.group_hits;
             bool found[kMaxPacket] = {};
+            const bool coherent = one_way(r, q);
             query(timed, counters, [&] {
-                if (one_way(r, q))
+                if (coherent)
                     nearest_hits(scene, r, q, 0.0f, kInfinity, h, found, counters.tests);
                 else
                     nearest_hits_scattered(scene, r, q, 0.0f, kInfinity, h, found, counters.tests);
@@ -279,7 +280,7 @@ void BatchTracer::trace_trees(const Ray* rays, const Hit* hits, const ShadedHit*
             }
             if (which == 0) continue;
             ShadedHit* const s = arrays.group_shaded;
-            shade_hits(r, h, which, false, timed, counters, s);
+            shade_hits(r, h, which, coherent, timed, counters, s);
             for (unsigned left = which; left != 0; left &= left - 1) {
                 const int j = __builtin_ctz(left);
                 TreeRay& node = nodes[group[j]];

@@ -38,7 +38,8 @@ class BatchTracer {
     /// shade() at the hits `which` (bit k: rays[k], hits[k]) of up to eight rays side by side
     /// (shade_lanes(); in raytrace their shadow rays towards each light side by side too), into
     /// out[k]; the shadow rays are counted in out[k].shadow_rays. `coherent`: the hits of a
-    /// camera packet, whose shadow rays towards a light may go down the BVH as one packet.
+    /// camera packet or of secondary rays going one way, whose shadow rays towards a light may
+    /// go down the BVH as one packet.
     void shade_hits(const Ray* rays, const Hit* hits, unsigned which, bool coherent, bool timed,
                     TraceCounters& counters, ShadedHit* out) const;
 
