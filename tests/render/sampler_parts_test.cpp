@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 #include <string>
 #include <vector>
 
+#include "render/no_aa.h"
 #include "render/sampler.h"
 
 namespace luz {
@@ -67,7 +69,7 @@ bool same_bits(const Image& a, const Image& b) {
            std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)) == 0;
 }
 
-TEST(ColourFunction, RunsGetEachTileWholeInRowOrder) {
+TEST(ColourFunction, RunsGetEachTileWholeInTileOrder) {
     std::vector<std::vector<float>> calls;
     const Grouping grouping{&calls};
     const auto plain = [](float x, float y, NoCounters&) { return shade_at(x, y); };
@@ -77,9 +79,38 @@ TEST(ColourFunction, RunsGetEachTileWholeInRowOrder) {
     for (const auto& c : calls) sizes.push_back(c.size());
     std::sort(sizes.begin(), sizes.end());
     EXPECT_EQ(sizes, (std::vector<size_t>{8, 32, 64, 256}));  // 4×2, 16×2, 4×16, 16×16
+    // a whole tile's x: 8 × 8 blocks of 4 × 2 packets (x 0…3 twice, then 4…7 twice, …)
+    int dx[256], dy[256];
+    ASSERT_EQ(tile_order(16, 16, dx, dy), 256);
     for (const auto& c : calls) {
         if (c.size() != 256) continue;
-        for (int k = 0; k < 256; ++k) EXPECT_EQ(c[k], static_cast<float>(k % 16) + 0.5f);
+        for (int k = 0; k < 256; ++k) EXPECT_EQ(c[k], static_cast<float>(dx[k]) + 0.5f);
+        for (int k = 0; k < 8; ++k) EXPECT_EQ(c[k], static_cast<float>(k % 4) + 0.5f);
+        EXPECT_EQ(c[8], 4.5f);
+    }
+}
+
+TEST(ColourFunction, TileOrderHasEveryPixelOnceInPacketsOfFourByTwo) {
+    for (const auto& [w, h] : {std::pair{16, 16}, {5, 16}, {16, 3}, {1, 1}, {9, 7}}) {
+        int dx[256], dy[256];
+        const int n = tile_order(w, h, dx, dy);
+        ASSERT_EQ(n, w * h);
+        std::vector<int> seen(static_cast<size_t>(w * h), 0);
+        for (int k = 0; k < n; ++k) {
+            ASSERT_TRUE(dx[k] >= 0 && dx[k] < w && dy[k] >= 0 && dy[k] < h) << w << "x" << h;
+            ++seen[static_cast<size_t>(dy[k] * w + dx[k])];
+        }
+        EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), n) << w << "x" << h;
+    }
+    int dx[256], dy[256];
+    tile_order(16, 16, dx, dy);
+    for (int k = 0; k < 256; k += 8) {  // each packet of eight: a 4 × 2 rectangle
+        const int x0 = *std::min_element(dx + k, dx + k + 8),
+                  y0 = *std::min_element(dy + k, dy + k + 8);
+        for (int j = 0; j < 8; ++j) {
+            EXPECT_EQ(dx[k + j], x0 + j % 4);
+            EXPECT_EQ(dy[k + j], y0 + j / 4);
+        }
     }
 }
 
