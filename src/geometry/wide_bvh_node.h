@@ -149,8 +149,8 @@ template <class V, int W>
 /// distance in entry[k]. Per lane the very arithmetic of hit_node(): the same hits and entries
 /// (a NaN from 0·∞ loses in max/min against the running interval, which it leaves as it is).
 template <int W>
-inline int hit_wide(const WideBvhNode<W>& n, const WideRay<W>& r, float t_min, float t_max,
-                    float* entry) {
+[[gnu::always_inline]] inline int hit_wide(const WideBvhNode<W>& n, const WideRay<W>& r,
+                                           float t_min, float t_max, float* entry) {
     const char* base = reinterpret_cast<const char*>(&n);
     const auto plane = [&](uint32_t at) {
         return load_aligned_lanes(reinterpret_cast<const float*>(base + at));
