@@ -55,6 +55,15 @@ inline Lane8i hit_child(const Bvh8::Node& n, int k, const BoxRays& r, Lane8f t_m
     return lane_le(tn, tf);
 }
 
+/// The rays of `in_packet` that meet child k of n (none for an unused child), their entry
+/// distances in `entry`.
+[[gnu::always_inline]] inline unsigned rays_in_child(const Bvh8::Node& n, int k, const BoxRays& r,
+                                                     Lane8f t_min, Lane8f t_max, Lane8i in_packet,
+                                                     Lane8f& entry) {
+    if (n.count[k] == 0 && n.child[k] == Bvh8::Node::kUnused) return 0;
+    return lane_bits(hit_child(n, k, r, t_min, t_max, entry) & in_packet);
+}
+
 /// with_margin() lane by lane.
 inline Lane8f with_margin(Lane8f t_max) { return t_max + t_max * lanes(0x1p-16f); }
 
@@ -94,10 +103,8 @@ void nearest_packet(const Bvh8& bvh, const RayPacket& p, unsigned active, float 
             Entry h[8];
             int m = 0;
             for (int k = 0; k < 8; ++k) {
-                if (n.count[k] == 0 && n.child[k] == Bvh8::Node::kUnused) continue;
                 Lane8f entry;
-                const unsigned hit =
-                    lane_bits(hit_child(n, k, rays, t_min8, limit, entry) & in_packet);
+                const unsigned hit = rays_in_child(n, k, rays, t_min8, limit, in_packet, entry);
                 if (hit == 0) continue;
                 float key = entry[__builtin_ctz(hit)];
                 for (unsigned b = hit & (hit - 1); b != 0; b &= b - 1) {
@@ -160,10 +167,8 @@ unsigned any_packet(const Bvh8& bvh, const RayPacket& p, unsigned active, float 
             Entry h[8];
             int m = 0;
             for (int k = 0; k < 8; ++k) {
-                if (n.count[k] == 0 && n.child[k] == Bvh8::Node::kUnused) continue;
                 Lane8f entry;
-                const unsigned hit =
-                    lane_bits(hit_child(n, k, rays, t_min8, limit, entry) & in_packet);
+                const unsigned hit = rays_in_child(n, k, rays, t_min8, limit, in_packet, entry);
                 if (hit != 0) h[m++] = {n.child[k], n.count[k], hit};
             }
             if (m > 0) {
