@@ -16,17 +16,13 @@
 #include "luz/animation.h"
 #include "luz/luz.h"
 #include "luz/scene_text.h"
+#include "same_bits.h"
 
 namespace luz {
 namespace {
 
 using nlohmann::json;
 using ::testing::HasSubstr;
-
-bool same_bits(const Image& a, const Image& b) {
-    return a.width == b.width && a.height == b.height &&
-           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)) == 0;
-}
 
 /// The shortest text that reads back as `v`.
 template <typename T>

@@ -8,17 +8,13 @@
 #include <limits>
 
 #include "luz/luz.h"
+#include "same_bits.h"
 
 namespace luz {
 namespace {
 
 constexpr AovKind kColourTerms[] = {AovKind::ambient,   AovKind::diffuse,   AovKind::specular,
                                     AovKind::reflected, AovKind::refracted, AovKind::emitted};
-
-bool same_bits(const Image& a, const Image& b) {
-    return a.width == b.width && a.height == b.height &&
-           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)) == 0;
-}
 
 Frame render_terms(const SceneDesc& d, int threads = 0) {
     RenderOptions o;

@@ -11,14 +11,10 @@
 #include "luz/luz.h"
 #include "luz/options.h"
 #include "render/render.h"
+#include "same_bits.h"
 
 namespace luz {
 namespace {
-
-bool same_bits(const Image& a, const Image& b) {
-    return a.width == b.width && a.height == b.height &&
-           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)) == 0;
-}
 
 SceneDesc small(const std::string& demo, const char* pipeline) {
     return load_scene(demo, {{"image.width", "64"},

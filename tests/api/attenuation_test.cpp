@@ -29,7 +29,7 @@ SceneDesc one_sphere(const std::string& pipeline, const std::string& law) {
                        {{"render.pipeline", pipeline}, {"attenuation", law}});
 }
 
-Frame render_terms(const SceneDesc& d) {
+Frame render_with_terms(const SceneDesc& d) {
     RenderOptions o;
     o.aovs = all_aovs();
     return render(build(d), d, o);
@@ -53,7 +53,7 @@ TEST(Attenuation, CentrePixelFollowsTheLawInEveryPipeline) {
                                             ? Attenuation::linear
                                             : Attenuation::inverse_square);
             const Frame plain = render(build(desc), desc);
-            const Frame f = render_terms(desc);
+            const Frame f = render_with_terms(desc);
             for (int c = 0; c < 3; ++c) {
                 // I = Ia·Ka + Il·factor·(Kd·cosθ + Ks·cosα^n), to 1/255
                 const double want = 0.1 + Il[c] * law.factor * local;
@@ -103,7 +103,7 @@ TEST(Attenuation, TreeAttenuationAFollowsTheLaw) {
         SCOPED_TRACE(law.law);
         const SceneDesc d = mirror(law.law);
         const Frame batch = render(build(d), d);  // the batch engine
-        const Frame f = render_terms(d);          // the reference, observed
+        const Frame f = render_with_terms(d);     // the reference, observed
         EXPECT_NEAR(batch.image.at(16, 16).x, 0.5f * law.A, 1e-4f);
         EXPECT_NEAR(f.image.at(16, 16).x, 0.5f * law.A, 1e-4f);
         EXPECT_NEAR(f.aov("reflected")->image.at(16, 16).y, 0.5f * law.A, 1e-4f);

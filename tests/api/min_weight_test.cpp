@@ -9,14 +9,10 @@
 
 #include "luz/inspect.h"
 #include "luz/luz.h"
+#include "same_bits.h"
 
 namespace luz {
 namespace {
-
-bool same_bits(const Image& a, const Image& b) {
-    return a.width == b.width && a.height == b.height &&
-           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)) == 0;
-}
 
 /// Two mirrors facing each other (every reflection coefficient 0.5) and a mirror sphere.
 SceneDesc mirrors(std::vector<Override> o) {

@@ -27,18 +27,18 @@ bool same_bits_as_crop(const Image& part, const Image& whole, const PixelRect& r
     return true;
 }
 
-struct Case {
+struct RegionCase {
     std::string scene;
     std::vector<std::string> sets;  // PATH=JSON
 };
 
-void PrintTo(const Case& c, std::ostream* os) {
+void PrintTo(const RegionCase& c, std::ostream* os) {
     *os << c.scene;
     for (const std::string& s : c.sets) *os << " --set " << s;
 }
 
 /// A test name: the scene and the values set, letters and digits only.
-std::string case_name(const testing::TestParamInfo<Case>& info) {
+std::string case_name(const testing::TestParamInfo<RegionCase>& info) {
     std::string name = info.param.scene.substr(5) + "_" + std::to_string(info.index);
     for (const std::string& s : info.param.sets) {
         name += "_";
@@ -48,7 +48,7 @@ std::string case_name(const testing::TestParamInfo<Case>& info) {
     return name;
 }
 
-SceneDesc load(const Case& c) {
+SceneDesc load(const RegionCase& c) {
     std::vector<Override> o;
     for (const std::string& s : c.sets) o.push_back(parse_set(s));
     o.push_back(parse_set("image.width=83"));  // not a multiple of the tile size
@@ -61,7 +61,7 @@ SceneDesc load(const Case& c) {
 const PixelRect kRects[] = {{3, 4, 9, 10},   {10, 12, 50, 40}, {0, 0, 83, 61},   {70, 50, 83, 61},
                             {0, 30, 83, 31}, {47, 0, 48, 61},  {16, 16, 32, 32}, {82, 60, 83, 61}};
 
-class RegionTest : public testing::TestWithParam<Case> {};
+class RegionTest : public testing::TestWithParam<RegionCase> {};
 
 TEST_P(RegionTest, PixelsAreThoseOfTheWholeRender) {
     const SceneDesc d = load(GetParam());
@@ -104,20 +104,22 @@ TEST_P(RegionTest, PixelsAreThoseOfTheWholeRender) {
 INSTANTIATE_TEST_SUITE_P(
     EveryPipelineAndAntialiasing, RegionTest,
     testing::Values(
-        Case{"demo:whitted", {"render.antialias.mode=\"none\""}},
-        Case{"demo:whitted", {"render.antialias.mode=\"grid\"", "render.antialias.samples=4"}},
-        Case{"demo:whitted",
-             {"render.antialias.mode=\"grid\"", "render.antialias.samples=9",
-              "render.antialias.filter=\"tent\""}},
-        Case{"demo:whitted",
-             {"render.antialias.mode=\"grid\"", "render.antialias.samples=4",
-              "render.antialias.filter=\"tent\"", "render.antialias.jitter=true"}},
-        Case{"demo:whitted", {"render.antialias.mode=\"adaptive\""}},
-        Case{"demo:whitted", {"render.pipeline=\"raycast\"", "render.antialias.mode=\"adaptive\""}},
-        Case{"demo:primitives", {"render.antialias.mode=\"none\""}},
-        Case{"demo:primitives",
-             {"render.antialias.mode=\"grid\"", "render.antialias.filter=\"tent\""}},
-        Case{"demo:primitives", {"render.antialias.mode=\"adaptive\""}}),
+        RegionCase{"demo:whitted", {"render.antialias.mode=\"none\""}},
+        RegionCase{"demo:whitted",
+                   {"render.antialias.mode=\"grid\"", "render.antialias.samples=4"}},
+        RegionCase{"demo:whitted",
+                   {"render.antialias.mode=\"grid\"", "render.antialias.samples=9",
+                    "render.antialias.filter=\"tent\""}},
+        RegionCase{"demo:whitted",
+                   {"render.antialias.mode=\"grid\"", "render.antialias.samples=4",
+                    "render.antialias.filter=\"tent\"", "render.antialias.jitter=true"}},
+        RegionCase{"demo:whitted", {"render.antialias.mode=\"adaptive\""}},
+        RegionCase{"demo:whitted",
+                   {"render.pipeline=\"raycast\"", "render.antialias.mode=\"adaptive\""}},
+        RegionCase{"demo:primitives", {"render.antialias.mode=\"none\""}},
+        RegionCase{"demo:primitives",
+                   {"render.antialias.mode=\"grid\"", "render.antialias.filter=\"tent\""}},
+        RegionCase{"demo:primitives", {"render.antialias.mode=\"adaptive\""}}),
     case_name);
 
 TEST(Region, BadRectanglesAreRefusedNamingTheArgument) {

@@ -12,10 +12,10 @@ namespace {
 
 class Aov : public TempDirTest {};
 
-const std::vector<std::string> kSmall = {"--width", "48", "--height", "36", "-q"};
+const std::vector<std::string> kAovSize = {"--width", "48", "--height", "36", "-q"};
 
 std::vector<std::string> args(std::vector<std::string> a) {
-    a.insert(a.end(), kSmall.begin(), kSmall.end());
+    a.insert(a.end(), kAovSize.begin(), kAovSize.end());
     return a;
 }
 

@@ -62,7 +62,7 @@ int run_and_interrupt(const std::vector<std::string>& args, const std::filesyste
 
 // About 0.3 s on two threads of an idle machine: each run is interrupted once it has saved
 // some tiles, so the render need only outlast a few such runs.
-std::vector<std::string> render_args(const std::string& out, const std::string& aa) {
+std::vector<std::string> checkpoint_render(const std::string& out, const std::string& aa) {
     return {"render",  "demo:whitted", "--width", "640", "--height", "480",          "--aa",
             aa,        "--samples",    "9",       "-o",  out,        "--checkpoint", "render.ckpt",
             "--stats", "stats.json"};
@@ -71,7 +71,7 @@ std::vector<std::string> render_args(const std::string& out, const std::string& 
 /// Interrupts the render at random moments (0 to 50 ms after a run's first periodic write) four
 /// times in a row, each run continuing from the checkpoint, then lets one more run finish.
 void resume_until_done(const std::filesystem::path& dir, const std::string& aa, std::mt19937& rng) {
-    const std::vector<std::string> args = render_args("resumed.png", aa);
+    const std::vector<std::string> args = checkpoint_render("resumed.png", aa);
     int interrupted = 0;
     for (int run = 0; run < 4; ++run) {
         const int ms = std::uniform_int_distribution<int>(0, 50)(rng);
@@ -94,7 +94,7 @@ void resume_until_done(const std::filesystem::path& dir, const std::string& aa, 
 TEST_F(Checkpoint, ResumedRendersEndWithTheBitsOfAnUninterruptedOne) {
     std::mt19937 rng(12345);
     for (const std::string aa : {"grid", "adaptive"}) {
-        std::vector<std::string> plain = render_args("plain.png", aa);
+        std::vector<std::string> plain = checkpoint_render("plain.png", aa);
         plain.resize(plain.size() - 4);  // no --checkpoint, no --stats
         plain.push_back("-q");
         const RunResult r = run_luz(plain, dir_);
@@ -106,10 +106,10 @@ TEST_F(Checkpoint, ResumedRendersEndWithTheBitsOfAnUninterruptedOne) {
 }
 
 TEST_F(Checkpoint, AnotherRendersFileIsRefusedAndLeftAsItWas) {
-    ASSERT_EQ(run_and_interrupt(render_args("out.png", "grid"), dir_, 0), 130);
+    ASSERT_EQ(run_and_interrupt(checkpoint_render("out.png", "grid"), dir_, 0), 130);
     const std::string saved = read_file(dir_ / "render.ckpt");
     write_file(dir_ / "other.png", "the previous picture");
-    std::vector<std::string> other = render_args("other.png", "grid");
+    std::vector<std::string> other = checkpoint_render("other.png", "grid");
     other.push_back("--set");
     other.push_back("materials.mirror.reflection=0.5");
     const RunResult r = run_luz(other, dir_);
@@ -122,7 +122,7 @@ TEST_F(Checkpoint, AnotherRendersFileIsRefusedAndLeftAsItWas) {
 }
 
 TEST_F(Checkpoint, DamagedOrForeignFilesAreRefused) {
-    ASSERT_EQ(run_and_interrupt(render_args("out.png", "grid"), dir_, 0), 130);
+    ASSERT_EQ(run_and_interrupt(checkpoint_render("out.png", "grid"), dir_, 0), 130);
     const std::string saved = read_file(dir_ / "render.ckpt");
     ASSERT_GT(saved.size(), 100u);
     struct Case {
@@ -141,7 +141,7 @@ TEST_F(Checkpoint, DamagedOrForeignFilesAreRefused) {
     };
     for (const Case& c : cases) {
         write_file(dir_ / "render.ckpt", c.bytes);
-        const RunResult r = run_luz(render_args("out.png", "grid"), dir_);
+        const RunResult r = run_luz(checkpoint_render("out.png", "grid"), dir_);
         EXPECT_EQ(r.status, 2) << c.message;
         EXPECT_EQ(r.err, "render.ckpt: --checkpoint: " + c.message + "\n");
         EXPECT_EQ(read_file(dir_ / "render.ckpt"), c.bytes) << "left as it was";
@@ -152,14 +152,14 @@ TEST_F(Checkpoint, DamagedOrForeignFilesAreRefused) {
 // A save cut by SIGKILL (mpirun kills a run one second after its SIGTERM) leaves a temporary
 // file beside the checkpoint: the next run goes on from the checkpoint and removes it.
 TEST_F(Checkpoint, ATemporaryFileOfAKilledSaveIsRemovedByTheNextRun) {
-    ASSERT_EQ(run_and_interrupt(render_args("out.png", "grid"), dir_, 0), 130);
+    ASSERT_EQ(run_and_interrupt(checkpoint_render("out.png", "grid"), dir_, 0), 130);
     const std::string saved = read_file(dir_ / "render.ckpt");
     const pid_t dead = fork();
     if (dead == 0) _exit(0);
     ASSERT_EQ(waitpid(dead, nullptr, 0), dead);
     const std::string cut = ".render.ckpt.tmp." + std::to_string(dead) + ".00ff00ff00ff00ff";
     write_file(dir_ / cut, saved.substr(0, saved.size() / 2));
-    const RunResult r = run_luz(render_args("out.png", "grid"), dir_);
+    const RunResult r = run_luz(checkpoint_render("out.png", "grid"), dir_);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(list_dir(dir_), (std::set<std::string>{"out.png", "stats.json"}));
 }

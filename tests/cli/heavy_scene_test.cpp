@@ -20,12 +20,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 const std::string kScene = LUZ_SOURCE_DIR "/scenes/exploding_glass.json";
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr double kSlowdown = 10;  // a Debug build under ASan
-#else
-constexpr double kSlowdown = 1;
-#endif
-
 class HeavyScene : public TempDirTest {};
 
 /// The distinct progress lines ("0.04%  ETA 3h05m", the words after the bar) that `luz args`

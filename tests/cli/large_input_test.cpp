@@ -12,12 +12,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr double kSlowdown = 10;  // a Debug build under ASan
-#else
-constexpr double kSlowdown = 1;
-#endif
-
 class LargeInput : public TempDirTest {
   protected:
     /// Renders s.json at 32×24; checks exit 0; returns the seconds taken.

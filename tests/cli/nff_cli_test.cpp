@@ -27,7 +27,7 @@ class NffCli : public TempDirTest {
 };
 
 /// The width and height a PNG's header gives.
-std::pair<int, int> png_size(const std::string& png) {
+std::pair<int, int> png_width_height(const std::string& png) {
     const auto be = [&](size_t at) {
         return (int(uint8_t(png[at])) << 24) | (int(uint8_t(png[at + 1])) << 16) |
                (int(uint8_t(png[at + 2])) << 8) | int(uint8_t(png[at + 3]));
@@ -39,7 +39,7 @@ TEST_F(NffCli, RendersAtTheFilesResolutionUnlessTold) {
     const RunResult r = run_luz({"render", "small.nff", "--stats", "s.json"}, dir_);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.err, "");
-    EXPECT_EQ(png_size(read_file(dir_ / "small.png")), std::make_pair(48, 32));
+    EXPECT_EQ(png_width_height(read_file(dir_ / "small.png")), std::make_pair(48, 32));
     const auto stats = nlohmann::json::parse(read_file(dir_ / "s.json"));
     EXPECT_EQ(stats["pipeline"], "raytrace");
     EXPECT_GT(stats["rays"]["shadow"].get<int>(), 0);
@@ -47,7 +47,7 @@ TEST_F(NffCli, RendersAtTheFilesResolutionUnlessTold) {
     const RunResult w =
         run_luz({"render", "small.nff", "-o", "w.png", "--width", "20", "--height", "10"}, dir_);
     ASSERT_EQ(w.status, 0) << w.err;
-    EXPECT_EQ(png_size(read_file(dir_ / "w.png")), std::make_pair(20, 10));
+    EXPECT_EQ(png_width_height(read_file(dir_ / "w.png")), std::make_pair(20, 10));
 }
 
 TEST_F(NffCli, SetChangesAMaterialByItsName) {
@@ -68,7 +68,7 @@ TEST_F(NffCli, RegionAndAovWorkAsOnAnyScene) {
         {"render", "small.nff", "-o", "r.png", "--region", "8,4,40,28", "--aov", "depth,normal"},
         dir_);
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_EQ(png_size(read_file(dir_ / "r.png")), std::make_pair(32, 24));
+    EXPECT_EQ(png_width_height(read_file(dir_ / "r.png")), std::make_pair(32, 24));
     EXPECT_TRUE(std::filesystem::exists(dir_ / "r.depth.png"));
     EXPECT_TRUE(std::filesystem::exists(dir_ / "r.normal.png"));
 }

@@ -15,7 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kRoot = LUZ_SOURCE_DIR;
+const fs::path kSourceRoot = LUZ_SOURCE_DIR;
 
 std::string read_text(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
@@ -26,7 +26,7 @@ std::string read_text(const fs::path& p) {
 
 /// The training renders: the quoted lines of `set(runs …)`, each a scene and its options.
 std::vector<std::string> training_runs() {
-    const std::string text = read_text(kRoot / "cmake/pgo_train.cmake");
+    const std::string text = read_text(kSourceRoot / "cmake/pgo_train.cmake");
     const size_t begin = text.find("set(runs");
     const size_t end = text.find(')', begin);
     std::vector<std::string> runs;
@@ -43,7 +43,7 @@ std::vector<std::string> training_runs() {
 std::set<std::string> benchmarked_scenes() {
     std::set<std::string> names;
     const std::regex name(R"((demo:[a-z_]+)|([A-Za-z0-9_]+\.(json|obj|nff)))");
-    for (const auto& e : fs::recursive_directory_iterator(kRoot / "bench")) {
+    for (const auto& e : fs::recursive_directory_iterator(kSourceRoot / "bench")) {
         if (!e.is_regular_file()) continue;
         const std::string text = read_text(e.path());
         for (std::sregex_iterator it(text.begin(), text.end(), name), end; it != end; ++it) {

@@ -14,27 +14,27 @@ namespace {
 
 class Region : public TempDirTest {};
 
-const std::vector<std::string> kScene = {"demo:whitted",
-                                         "--width",
-                                         "97",
-                                         "--height",
-                                         "71",
-                                         "--aa",
-                                         "grid",
-                                         "--set",
-                                         "render.antialias.filter=\"tent\"",
-                                         "-q"};
+const std::vector<std::string> kRegionScene = {"demo:whitted",
+                                               "--width",
+                                               "97",
+                                               "--height",
+                                               "71",
+                                               "--aa",
+                                               "grid",
+                                               "--set",
+                                               "render.antialias.filter=\"tent\"",
+                                               "-q"};
 
-std::vector<std::string> render_args(std::vector<std::string> extra) {
+std::vector<std::string> region_args(std::vector<std::string> extra) {
     std::vector<std::string> a = {"render"};
-    a.insert(a.end(), kScene.begin(), kScene.end());
+    a.insert(a.end(), kRegionScene.begin(), kRegionScene.end());
     a.insert(a.end(), extra.begin(), extra.end());
     return a;
 }
 
 TEST_F(Region, FileIsTheRectangleOfTheWholeRender) {
-    ASSERT_EQ(run_luz(render_args({"-o", "whole.pfm", "--aov", "depth"}), dir_).status, 0);
-    const RunResult r = run_luz(render_args({"-o", "part.pfm", "--aov", "depth", "--region",
+    ASSERT_EQ(run_luz(region_args({"-o", "whole.pfm", "--aov", "depth"}), dir_).status, 0);
+    const RunResult r = run_luz(region_args({"-o", "part.pfm", "--aov", "depth", "--region",
                                              "13,20,61,33", "--stats", "s.json"}),
                                 dir_);
     ASSERT_EQ(r.status, 0) << r.err;
@@ -74,7 +74,7 @@ TEST_F(Region, BadRectanglesExit2NamingTheOptionAndWriteNothing) {
         {"", "--region : expected four integers"},
     };
     for (const auto& [text, message] : cases) {
-        const RunResult r = run_luz(render_args({"-o", "x.png", "--region", text}), dir_);
+        const RunResult r = run_luz(region_args({"-o", "x.png", "--region", text}), dir_);
         EXPECT_EQ(r.status, 2) << text;
         EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
         EXPECT_EQ(count_lines(r.err), 1) << r.err;

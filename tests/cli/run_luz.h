@@ -11,6 +11,13 @@
 
 namespace luz::test {
 
+/// How much longer than in Release the code under test may take: a Debug build under ASan.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr double kSlowdown = 10;
+#else
+inline constexpr double kSlowdown = 1;
+#endif
+
 struct RunResult {
     int status = -1;  ///< exit status, or 128 + signal when killed
     std::string out;  ///< standard output

@@ -20,6 +20,7 @@
 #include "exr_fixtures.h"
 #include "image/image_codecs.h"
 #include "image/image_io.h"
+#include "same_bits.h"
 #include "temp_dir.h"
 
 namespace luz {
@@ -29,11 +30,6 @@ using test::awkward_image;
 using test::box;
 using test::channel;
 using test::TempDir;
-
-bool same_bits(const Image& a, const Image& b) {
-    return a.width == b.width && a.height == b.height &&
-           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)) == 0;
-}
 
 /// The header of `bytes`, read with OpenEXRCore.
 struct Header {

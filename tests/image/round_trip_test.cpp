@@ -14,6 +14,7 @@
 
 #include "image/compare.h"
 #include "image/image_io.h"
+#include "same_bits.h"
 #include "temp_dir.h"
 
 namespace luz {
@@ -43,12 +44,6 @@ Image quantized(const Image& img, Encoding e) {
         for (int c = 0; c < 3; ++c) p[c] = static_cast<float>(encode_8bit(p[c], e)) / 255.0f;
     }
     return q;
-}
-
-/// Compares bit patterns, so NaN == NaN and -0 != 0.
-bool same_bits(const Image& a, const Image& b) {
-    return a.width == b.width && a.height == b.height && a.pixels.size() == b.pixels.size() &&
-           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)) == 0;
 }
 
 class RoundTrip8 : public ::testing::TestWithParam<std::tuple<std::string, Encoding>> {};

@@ -13,6 +13,7 @@
 #include "geometry/scene.h"
 #include "image/compare.h"
 #include "render/render.h"
+#include "same_bits.h"
 #include "scene/scene_loader.h"
 
 namespace luz {
@@ -69,11 +70,6 @@ SceneDesc glass_and_mirror(Pipeline pipeline) {
     d.objects[3].center = {2.2f, 0.5f, -0.5f};
     d.objects[3].radius = 0.5f;
     return d;
-}
-
-bool same_bits(const Image& a, const Image& b) {
-    return a.pixels.size() == b.pixels.size() &&
-           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)) == 0;
 }
 
 TEST(MeshRender, AccelNoneAndBvhGiveTheSameImage) {

@@ -21,7 +21,7 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 
-void expect_vec(const Vec3& a, const Vec3& b, float tol = 1e-5f) {
+void expect_near_vec(const Vec3& a, const Vec3& b, float tol = 1e-5f) {
     EXPECT_NEAR(a.x, b.x, tol);
     EXPECT_NEAR(a.y, b.y, tol);
     EXPECT_NEAR(a.z, b.z, tol);
@@ -101,11 +101,11 @@ TEST(Shadows, OpaqueSphereLeavesAmbientOnly) {
     const BuiltScene scene = build_scene(d);
     // Right under the sphere: in shadow.
     const Rgb shadowed = trace_down(scene, d, {0, 0.5f, 0});
-    expect_vec(shadowed, Rgb{0.1f});
+    expect_near_vec(shadowed, Rgb{0.1f});
     // Far to the side: lit, I = Ka + Kd·cosθ.
     const Vec3 P{5, 0, 0};
     const float cos_theta = normalize(Vec3{0, 10, 0} - P).y;
-    expect_vec(trace_down(scene, d, {5, 0.5f, 0}), Rgb{0.1f + 0.45f * cos_theta});
+    expect_near_vec(trace_down(scene, d, {5, 0.5f, 0}), Rgb{0.1f + 0.45f * cos_theta});
 }
 
 TEST(Shadows, GlassSphereTransmitsTransparencySquared) {
@@ -121,7 +121,7 @@ TEST(Shadows, GlassSphereTransmitsTransparencySquared) {
     TraceCounters c;
     const Rgb I = trace_down(scene, d, {0, 0.5f, 0}, &c);
     // vis = 0.6 · 0.6 (the shadow ray enters and leaves the sphere).
-    expect_vec(I, Rgb{0.1f + 0.36f * 0.45f});
+    expect_near_vec(I, Rgb{0.1f + 0.36f * 0.45f});
     EXPECT_EQ(c.shadow, 1u);
 }
 
@@ -135,10 +135,10 @@ TEST(Planes, LitFromBelowAndSeenFromBelow) {
     float dist;
     // Seen from below, lit from below: the normal flips towards the viewer.
     const Rgb below = tracer.trace(Ray{{0, -1, 0}, {0, 1, 0}}, 0, c, dist);
-    expect_vec(below, Rgb{0.1f + 0.45f});
+    expect_near_vec(below, Rgb{0.1f + 0.45f});
     EXPECT_NEAR(dist, 1.0f, 1e-6f);
     // Seen from above, the light below does not reach the viewer's side.
-    expect_vec(trace_down(scene, d, {0, 1, 0}), Rgb{0.1f});
+    expect_near_vec(trace_down(scene, d, {0, 1, 0}), Rgb{0.1f});
 }
 
 TEST(LightSpheres, SeenDirectlyAndInAMirrorNeverCastingShadows) {
@@ -156,7 +156,7 @@ TEST(LightSpheres, SeenDirectlyAndInAMirrorNeverCastingShadows) {
     TraceCounters c;
     float dist;
     // Directly: the light's intensity clamped to [0, 1].
-    expect_vec(tracer.trace(Ray{{0, 10, 0}, {0, -1, 0}}, 0, c, dist), Rgb{1.0f, 0.5f, 0.25f});
+    expect_near_vec(tracer.trace(Ray{{0, 10, 0}, {0, -1, 0}}, 0, c, dist), Rgb{1.0f, 0.5f, 0.25f});
     EXPECT_NEAR(dist, 6.5f, 1e-5f);
     // In the mirror floor, from beside the light: reflection · clamped colour; the local
     // term is 0 (Ka = Kd = 0) and the light sphere does not shadow the floor point.
@@ -164,7 +164,7 @@ TEST(LightSpheres, SeenDirectlyAndInAMirrorNeverCastingShadows) {
     const Vec3 dir = normalize(Vec3{0, -1, -0.5f});  // meets the floor at (0, 0, 1.5)
     const Rgb seen = tracer.trace(Ray{from, dir}, 0, c, dist);
     // The reflected ray from (0, 0, 1.5) goes up and back: (0, 1, −0.5), towards (0, 3, 0).
-    expect_vec(seen, Rgb{0.5f, 0.25f, 0.125f});
+    expect_near_vec(seen, Rgb{0.5f, 0.25f, 0.125f});
     // A floor point right under the light is lit by it (the sphere does not block).
     d.materials[1] = Material{};
     const BuiltScene lit = build_scene(d);
@@ -183,20 +183,20 @@ TEST(RayTree, ReflectionAddsTheMirroredColourAndMaxDepthCutsIt) {
     const Rgb local{0.1f + 0.45f};
     {
         const BuiltScene scene = build_scene(d);
-        expect_vec(trace_down(scene, d, {0, 1, 0}), local + Rgb{0.2f, 0.4f, 0.6f} * 0.5f);
+        expect_near_vec(trace_down(scene, d, {0, 1, 0}), local + Rgb{0.2f, 0.4f, 0.6f} * 0.5f);
     }
     d.render.max_depth = 0;
     {
         const BuiltScene scene = build_scene(d);
         TraceCounters c;
-        expect_vec(trace_down(scene, d, {0, 1, 0}, &c), local);
+        expect_near_vec(trace_down(scene, d, {0, 1, 0}, &c), local);
         EXPECT_EQ(c.reflection, 0u);
     }
     d.render.max_depth = 5;
     d.render.tree_attenuation = true;  // a reflected ray into the void contributes nothing
     {
         const BuiltScene scene = build_scene(d);
-        expect_vec(trace_down(scene, d, {0, 1, 0}), local);
+        expect_near_vec(trace_down(scene, d, {0, 1, 0}), local);
     }
 }
 
@@ -221,7 +221,7 @@ TEST(RayTree, SchlickLeavesTheMirrorCoefficientAlone) {
     float dist;
     const Rgb seen = tracer.trace(Ray{{0, 1, 1}, normalize(Vec3{0, -1, -1})}, 0, c, dist);
     // Ia·Ka + Il/(d+K)·Kd·cos 0 + reflection·background
-    expect_vec(seen, Rgb{0.1f + 0.45f / 11} + Rgb{0.2f, 0.4f, 0.6f} * 0.5f);
+    expect_near_vec(seen, Rgb{0.1f + 0.45f / 11} + Rgb{0.2f, 0.4f, 0.6f} * 0.5f);
 }
 
 TEST(RayTree, TreeAttenuationDividesBySegmentLengthPlusK) {
@@ -244,7 +244,7 @@ TEST(RayTree, TreeAttenuationDividesBySegmentLengthPlusK) {
     // so A = 1/(d + 2) scales the light's colour.
     const Rgb seen = tracer.trace(Ray{{1, 1, 0}, normalize(Vec3{-0.5f, -1, 0})}, 0, c, dist);
     const float seg = std::sqrt(0.25f * 0.25f + 0.5f * 0.5f) - 0.1f;
-    expect_vec(seen, Rgb{0.8f / (seg + 2.0f)}, 1e-4f);  // the origin moved by ε
+    expect_near_vec(seen, Rgb{0.8f / (seg + 2.0f)}, 1e-4f);  // the origin moved by ε
 }
 
 TEST(Refraction, ARayThroughAGlassSphereComesOutAndGoesOn) {
@@ -263,7 +263,7 @@ TEST(Refraction, ARayThroughAGlassSphereComesOutAndGoesOn) {
     TraceCounters c;
     // Straight through the centre: no bending; enters, leaves and meets the light sphere.
     const Rgb I = trace_down(scene, d, {0, 5, 0}, &c);
-    expect_vec(I, Rgb{0.7f, 0.6f, 0.5f});
+    expect_near_vec(I, Rgb{0.7f, 0.6f, 0.5f});
     EXPECT_EQ(c.refraction, 2u);
     // Off-centre rays bend towards the axis inside and away outside: a ray at x = 0.3 comes
     // out on the far side (its exit point is at x < 0.3); check by tracing it step by step.

@@ -11,6 +11,7 @@
 
 #include "render/no_aa.h"
 #include "render/sampler.h"
+#include "same_bits.h"
 
 namespace luz {
 namespace {
@@ -62,11 +63,6 @@ Image render(const AntialiasDesc& aa, int w, int h, const Colour& colour, int* r
     std::vector<NoCounters> counters;
     sample_image(aa, w, h, control, colour, out, counters, nullptr);
     return out;
-}
-
-bool same_bits(const Image& a, const Image& b) {
-    return a.pixels.size() == b.pixels.size() &&
-           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)) == 0;
 }
 
 TEST(ColourFunction, RunsGetEachTileWholeInTileOrder) {

@@ -11,10 +11,12 @@
 #include <map>
 #include <utility>
 
+#include "same_bits.h"
+
 namespace luz {
 namespace {
 
-struct NoCounters {};
+struct NoSamplerCounters {};
 
 AntialiasDesc grid(int samples, AaFilter filter = AaFilter::box, bool jitter = false) {
     AntialiasDesc aa;
@@ -41,17 +43,12 @@ Image run(const AntialiasDesc& aa, int w, int h, const ColourFunction& colour,
     Image out(w, h);
     RenderControl control;
     control.threads = threads;
-    std::vector<NoCounters> counters;
+    std::vector<NoSamplerCounters> counters;
     const SamplerCounts c = sample_image(
-        aa, w, h, control, [&](float x, float y, NoCounters&) { return colour(x, y); }, out,
+        aa, w, h, control, [&](float x, float y, NoSamplerCounters&) { return colour(x, y); }, out,
         counters, mask);
     if (counts) *counts = c;
     return out;
-}
-
-bool same_bits(const Image& a, const Image& b) {
-    return a.pixels.size() == b.pixels.size() &&
-           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)) == 0;
 }
 
 TEST(GridSampler, SamplesSitAtTheCentresOfTheirCells) {

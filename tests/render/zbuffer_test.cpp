@@ -39,7 +39,7 @@ ObjectDesc sphere(Vec3 centre, float radius) {
     return o;
 }
 
-Image render_desc(const SceneDesc& d, int threads = 1, RenderStats* stats_out = nullptr) {
+Image zbuffer_render(const SceneDesc& d, int threads = 1, RenderStats* stats_out = nullptr) {
     const BuiltScene scene = build_scene(d);
     RenderStats stats;
     RenderControl control;
@@ -58,7 +58,7 @@ TEST(Zbuffer, OrthographicSphereMatchesTheClosedFormAtEveryCoveredPixel) {
     d.geometry.tessellation = 720;
     d.lights.push_back({Vec3{0, 0, 10}, Rgb{10.0f}, 0});
     d.objects.push_back(sphere({0, 0, 0}, 1));
-    const Image img = render_desc(d, 2);
+    const Image img = zbuffer_render(d, 2);
     const Camera cam = Camera::from(d.camera, 160, 160);
     const Material& m = d.materials[0];
     int covered = 0;
@@ -107,7 +107,7 @@ TEST(Zbuffer, PerspectiveFloorIsPerspectiveCorrectAndClipped) {
     floor.point = {0, 0, 0};
     floor.normal = {0, 1, 0};
     d.objects.push_back(floor);
-    const Image img = render_desc(d, 2);
+    const Image img = zbuffer_render(d, 2);
     const Camera cam = Camera::from(d.camera, 120, 90);
     const Lighting lighting{d.render.model, d.ambient, d.attenuation_k, d.lights};
     int floor_pixels = 0, checked = 0;
@@ -150,7 +150,7 @@ TEST(Zbuffer, OrthographicFloorCellsArePrecise) {
     ObjectDesc floor;
     floor.type = ShapeType::plane;
     d.objects.push_back(floor);
-    const Image img = render_desc(d, 2);
+    const Image img = zbuffer_render(d, 2);
     const Camera cam = Camera::from(d.camera, 400, 300);
     int checked = 0;
     for (int j = 0; j < 300; ++j) {
@@ -173,7 +173,7 @@ TEST(Zbuffer, CoarseSphereHasNoCracks) {
     SceneDesc d = base_scene(200, 200);
     d.geometry.tessellation = 12;
     d.objects.push_back(sphere({0, 0, 0}, 1));
-    const Image img = render_desc(d);
+    const Image img = zbuffer_render(d);
     const Camera cam = Camera::from(d.camera, 200, 200);
     // Everything well inside the inscribed polygon's silhouette is covered.
     const float inner = std::cos(std::numbers::pi_v<float> / 6) - 0.05f;
@@ -199,18 +199,18 @@ TEST(Zbuffer, SharedEdgesCoverEachPixelOnce) {
     b.vertices = {Vec3{-1, -1, 0}, Vec3{1, 1, 0}, Vec3{-1, 1, 0}};
     d.objects = {a, b};
     d.camera.view_height = 2;  // the quad fills the image exactly
-    const Image img = render_desc(d);
+    const Image img = zbuffer_render(d);
     for (const Rgb& c : img.pixels) ASSERT_FALSE(is_background(c));
 }
 
 TEST(Zbuffer, OnlyWhatLiesInFrontOfTheCameraPlaneIsDrawn) {
     SceneDesc d = base_scene(40, 40);
     d.objects.push_back(sphere({0, 0, 12}, 1));  // behind the camera at z = 10
-    const Image img = render_desc(d);
+    const Image img = zbuffer_render(d);
     for (const Rgb& c : img.pixels) ASSERT_TRUE(is_background(c));
     // A sphere cut by the camera plane shows its far half only (no crash, no NaN).
     d.objects = {sphere({0, 0, 10}, 1)};
-    const Image cut = render_desc(d);
+    const Image cut = zbuffer_render(d);
     int covered = 0;
     for (const Rgb& c : cut.pixels) {
         ASSERT_TRUE(is_finite(c));
@@ -222,7 +222,7 @@ TEST(Zbuffer, OnlyWhatLiesInFrontOfTheCameraPlaneIsDrawn) {
 TEST(Zbuffer, LightSpheresAreDrawnInTheLightsClampedColour) {
     SceneDesc d = base_scene(50, 50);
     d.lights.push_back({Vec3{0, 0, 0}, Rgb{3.0f, 0.5f, 0.0f}, 0.5f});
-    const Image img = render_desc(d);
+    const Image img = zbuffer_render(d);
     EXPECT_EQ(img.at(25, 25), (Rgb{1.0f, 0.5f, 0.0f}));
     EXPECT_TRUE(is_background(img.at(2, 2)));
 }
@@ -237,9 +237,9 @@ TEST(Zbuffer, SameBitsForAnyThreadCount) {
     floor.type = ShapeType::plane;
     floor.point = {0, -1, 0};
     d.objects.push_back(floor);
-    const Image one = render_desc(d, 1);
-    const Image two = render_desc(d, 2);
-    const Image four = render_desc(d, 4);
+    const Image one = zbuffer_render(d, 1);
+    const Image two = zbuffer_render(d, 2);
+    const Image four = zbuffer_render(d, 4);
     ASSERT_EQ(one.pixels.size(), two.pixels.size());
     EXPECT_EQ(0,
               std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(Rgb)));

@@ -39,7 +39,7 @@ std::string obj_of(int faces) {
     return text;
 }
 
-MeshData parse(const std::string& text) {
+MeshData parse_cancel_obj(const std::string& text) {
     std::vector<std::string> warnings;
     const TextReader none = [](const std::string&, std::string& reason) {
         reason = "none";
@@ -51,10 +51,10 @@ MeshData parse(const std::string& text) {
 TEST(Cancel, AnObjLoadStops) {
     std::atomic<bool> cancel{false};
     const CancelScope scope(&cancel);
-    EXPECT_EQ(parse(obj_of(100)).triangle_count(), 100u);
+    EXPECT_EQ(parse_cancel_obj(obj_of(100)).triangle_count(), 100u);
     cancel = true;
-    EXPECT_THROW(parse(obj_of(100)), Cancelled);    // tinyobjloader reads nothing more
-    EXPECT_THROW(parse(obj_of(70000)), Cancelled);  // the checking pass stops on its way
+    EXPECT_THROW(parse_cancel_obj(obj_of(100)), Cancelled);    // tinyobjloader reads nothing more
+    EXPECT_THROW(parse_cancel_obj(obj_of(70000)), Cancelled);  // the checking pass stops on its way
 }
 
 TEST(Cancel, ASceneLoadStopsAtItsObjects) {

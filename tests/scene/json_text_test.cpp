@@ -21,7 +21,7 @@ using loader::parse_text;
 using ::testing::HasSubstr;
 
 /// The InputError message parse_text() throws for `text`, or "(no error)".
-std::string error_of(const std::string& text) {
+std::string json_error_of(const std::string& text) {
     try {
         parse_text(text, "s.json");
     } catch (const InputError& e) {
@@ -31,13 +31,13 @@ std::string error_of(const std::string& text) {
 }
 
 TEST(JsonText, ADuplicateKeyNamesBothPlaces) {
-    EXPECT_EQ(error_of("{\"a\": 1,\n  \"b\": {\"a\": 2},\n  \"a\": 3}"),
+    EXPECT_EQ(json_error_of("{\"a\": 1,\n  \"b\": {\"a\": 2},\n  \"a\": 3}"),
               "s.json:3:3: duplicate key \"a\" (first at 1:2): a key may appear once in an object");
     // an escaped spelling is the same key; an escaped quote inside a key is skipped over
-    EXPECT_THAT(error_of(R"({"a\"b": 1, "a\u0022b": 2})"),
+    EXPECT_THAT(json_error_of(R"({"a\"b": 1, "a\u0022b": 2})"),
                 HasSubstr("s.json:1:13: duplicate key \"a\"b\" (first at 1:2)"));
     // the same key in different objects is fine
-    EXPECT_EQ(error_of(R"({"x": {"a": 1}, "y": {"a": 1}, "z": [{"a": 1}, {"a": 2}]})"),
+    EXPECT_EQ(json_error_of(R"({"x": {"a": 1}, "y": {"a": 1}, "z": [{"a": 1}, {"a": 2}]})"),
               "(no error)");
 }
 
@@ -46,13 +46,13 @@ TEST(JsonText, ADuplicateAmongManyKeysIsFoundByTheIndex) {
     for (int i = 0; i < 100; ++i)
         text += "\"k" + std::to_string(i) + "\": " + std::to_string(i) + ",";
     text += "\n\"k42\": 0}";
-    EXPECT_THAT(error_of(text), HasSubstr("s.json:2:1: duplicate key \"k42\" (first at 1:"));
+    EXPECT_THAT(json_error_of(text), HasSubstr("s.json:2:1: duplicate key \"k42\" (first at 1:"));
 }
 
 TEST(JsonText, NulCharactersInKeysAndStringsAreRefusedWithTheirReason) {
-    EXPECT_EQ(error_of(R"({"objects\u0000": []})"),
+    EXPECT_EQ(json_error_of(R"({"objects\u0000": []})"),
               "s.json:1:2: key \"objects\\u0000\": a NUL character (\\u0000) is not allowed");
-    EXPECT_EQ(error_of(R"({"file": "a.obj\u0000x"})"),
+    EXPECT_EQ(json_error_of(R"({"file": "a.obj\u0000x"})"),
               "s.json:1:10: string \"a.obj\\u0000x\": a NUL character (\\u0000) is not allowed");
 }
 
@@ -77,11 +77,11 @@ TEST(JsonText, ADocumentLargerThanTheMemoryLimitIsRefusedWhileParsing) {
     for (int i = 0; i < 20000; ++i) text += (i ? ", " : "") + std::string(R"({"type": "sphere"})");
     text += "]}";
     set_memory_limit(1 << 20);
-    const std::string e = error_of(text);
+    const std::string e = json_error_of(text);
     set_memory_limit(UINT64_MAX);
     EXPECT_THAT(e, HasSubstr("the scene needs more memory than the 1.0 MiB limit"));
     EXPECT_THAT(e, HasSubstr("--max-memory"));
-    EXPECT_EQ(error_of(text), "(no error)");
+    EXPECT_EQ(json_error_of(text), "(no error)");
 }
 
 TEST(JsonText, LongValuesAndTokensAreShortenedInMessages) {
@@ -96,7 +96,7 @@ TEST(JsonText, LongValuesAndTokensAreShortenedInMessages) {
                                    "\xE2\x80\xA6\" (10485760 characters)"));
     EXPECT_LT(message.size(), 300u);
     // a syntax error's "last read" token: an unterminated string
-    const std::string e = error_of("{\"a\": \"" + huge);
+    const std::string e = json_error_of("{\"a\": \"" + huge);
     EXPECT_THAT(e, HasSubstr("JSON syntax error"));
     EXPECT_LT(e.size(), 300u);
     // a key that is not known

@@ -25,7 +25,7 @@ SceneDesc load(const std::string& body, const std::vector<Override>& overrides =
 }
 
 /// The message loading `text` (the whole file) gives, or "(no error)".
-std::string error_of(const std::string& text, const std::vector<Override>& overrides = {}) {
+std::string nff_error_of(const std::string& text, const std::vector<Override>& overrides = {}) {
     try {
         parse_scene(text, "dir/t.nff", "dir", overrides);
     } catch (const InputError& e) {
@@ -40,7 +40,7 @@ void expect_rgb(const Rgb& c, float r, float g, float b) {
     EXPECT_NEAR(c.z, b, 1e-6f);
 }
 
-double triangle_area(const MeshData& m, size_t t) {
+double nff_triangle_area(const MeshData& m, size_t t) {
     const Vec3 a = m.positions[m.position[3 * t]], b = m.positions[m.position[3 * t + 1]],
                c = m.positions[m.position[3 * t + 2]];
     return 0.5 * double(length(cross(b - a, c - a)));
@@ -48,7 +48,7 @@ double triangle_area(const MeshData& m, size_t t) {
 
 double mesh_area(const MeshData& m) {
     double s = 0;
-    for (size_t t = 0; t < m.triangle_count(); ++t) s += triangle_area(m, t);
+    for (size_t t = 0; t < m.triangle_count(); ++t) s += nff_triangle_area(m, t);
     return s;
 }
 
@@ -307,7 +307,7 @@ TEST(NffReader, BadInputNamesTheLine) {
         {v + "l 0 0 0 -1 0 0\n", "dir/t.nff:8: lights.0.intensity: "},
     };
     for (const auto& [text, message] : cases) {
-        const std::string e = error_of(text);
+        const std::string e = nff_error_of(text);
         EXPECT_THAT(e, HasSubstr(message)) << text;
         EXPECT_EQ(e.find('\n'), std::string::npos) << e;
     }
@@ -386,12 +386,12 @@ TEST(NffReader, ReadDirectlyABadObjectGetsTheDocumentsMessage) {
     };
     for (const auto& [text, message] : cases) {
         EXPECT_THROW(loader::read_nff(text, "dir/t.nff", "dir", true), loader::NffNotDirect);
-        EXPECT_THAT(error_of(text), HasSubstr(message)) << text;
+        EXPECT_THAT(nff_error_of(text), HasSubstr(message)) << text;
     }
 }
 
 TEST(NffReader, AnOverrideIsBlamedForWhatItPutThere) {
-    EXPECT_THAT(error_of(kView + "f 1 1 1 1 0 1 0 1\n", {{"materials.f1.n", "-1"}}),
+    EXPECT_THAT(nff_error_of(kView + "f 1 1 1 1 0 1 0 1\n", {{"materials.f1.n", "-1"}}),
                 HasSubstr("--set materials.f1.n=-1"));
 }
 

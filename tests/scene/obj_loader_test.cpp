@@ -32,25 +32,25 @@ struct Files {
     }
 };
 
-MeshData parse(const std::string& obj, std::vector<std::string>* warnings = nullptr,
-               const Files& files = {}, bool with_materials = true) {
+MeshData parse_test_obj(const std::string& obj, std::vector<std::string>* warnings = nullptr,
+                        const Files& files = {}, bool with_materials = true) {
     std::vector<std::string> w;
     MeshData m = parse_obj(obj, "m/x.obj", with_materials, files.reader(), w);
     if (warnings) *warnings = w;
     return m;
 }
 
-/// The InputError message parse() throws for `obj`.
-std::string error_of(const std::string& obj, const Files& files = {}) {
+/// The InputError message parse_test_obj() throws for `obj`.
+std::string obj_error_of(const std::string& obj, const Files& files = {}) {
     try {
-        parse(obj, nullptr, files);
+        parse_test_obj(obj, nullptr, files);
     } catch (const InputError& e) {
         return e.what();
     }
     return "(no error)";
 }
 
-double triangle_area(const MeshData& m, size_t t) {
+double obj_triangle_area(const MeshData& m, size_t t) {
     const Vec3 a = m.positions[m.position[3 * t]], b = m.positions[m.position[3 * t + 1]],
                c = m.positions[m.position[3 * t + 2]];
     return 0.5 * length(cross(b - a, c - a));
@@ -58,14 +58,14 @@ double triangle_area(const MeshData& m, size_t t) {
 
 double total_area(const MeshData& m) {
     double s = 0;
-    for (size_t t = 0; t < m.triangle_count(); ++t) s += triangle_area(m, t);
+    for (size_t t = 0; t < m.triangle_count(); ++t) s += obj_triangle_area(m, t);
     return s;
 }
 
 const char* kSquare = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
 
 TEST(ObjLoader, ATriangle) {
-    const MeshData m = parse("# a comment\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const MeshData m = parse_test_obj("# a comment\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     EXPECT_EQ(m.file, "m/x.obj");
     ASSERT_EQ(m.positions.size(), 3u);
     EXPECT_EQ(m.positions[1], (Vec3{1, 0, 0}));
@@ -75,7 +75,7 @@ TEST(ObjLoader, ATriangle) {
 }
 
 TEST(ObjLoader, QuadsAndNgonsAreTriangulated) {
-    const MeshData quad = parse(std::string(kSquare) + "f 1 2 3 4\n");
+    const MeshData quad = parse_test_obj(std::string(kSquare) + "f 1 2 3 4\n");
     ASSERT_EQ(quad.triangle_count(), 2u);
     EXPECT_NEAR(total_area(quad), 1.0, 1e-6);
 
@@ -85,14 +85,14 @@ TEST(ObjLoader, QuadsAndNgonsAreTriangulated) {
         const double a = k * M_PI / 3;
         hex += "v " + std::to_string(std::cos(a)) + " " + std::to_string(std::sin(a)) + " 0\n";
     }
-    const MeshData h = parse(hex + "f 1 2 3 4 5 6\n");
+    const MeshData h = parse_test_obj(hex + "f 1 2 3 4 5 6\n");
     ASSERT_EQ(h.triangle_count(), 4u);
     EXPECT_NEAR(total_area(h), 3 * std::sqrt(3.0) / 2, 1e-4);
-    for (size_t t = 0; t < h.triangle_count(); ++t) EXPECT_GT(triangle_area(h, t), 0.1);
+    for (size_t t = 0; t < h.triangle_count(); ++t) EXPECT_GT(obj_triangle_area(h, t), 0.1);
 
     // a concave L-shaped hexagon of area 3
     const MeshData l =
-        parse("v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nf 1 2 3 4 5 6\n");
+        parse_test_obj("v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nf 1 2 3 4 5 6\n");
     ASSERT_EQ(l.triangle_count(), 4u);
     EXPECT_NEAR(total_area(l), 3.0, 1e-5);
 }
@@ -112,21 +112,21 @@ TEST(ObjLoader, LargeFacesAcrossGroupsAndMaterialsKeepTheirOrder) {
     obj += "usemtl red\nf 301 302 306\n";
     Files files;
     files.text["m/x.mtl"] = "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n";
-    const MeshData m = parse(obj, nullptr, files);
+    const MeshData m = parse_test_obj(obj, nullptr, files);
     // the 300-gon: up to 298 triangles (in float, corners in line are dropped) of material 0
     double big = 0, ell = 0, rest = 0;
     size_t t = 0;
-    for (; t < m.triangle_count() && m.material[t] == 0; ++t) big += triangle_area(m, t);
+    for (; t < m.triangle_count() && m.material[t] == 0; ++t) big += obj_triangle_area(m, t);
     EXPECT_NEAR(big, 150 * std::sin(2 * M_PI / 300), 1e-4);
     for (size_t k = 0; k < 4; ++k, ++t) {
         ASSERT_LT(t, m.triangle_count());
         EXPECT_EQ(m.material[t], 1);
-        ell += triangle_area(m, t);
+        ell += obj_triangle_area(m, t);
     }
     EXPECT_NEAR(ell, 3.0, 1e-5);
     for (size_t k = 0; k < 2; ++k, ++t) {
         EXPECT_EQ(m.material[t], 1);  // a new object keeps the material
-        rest += triangle_area(m, t);
+        rest += obj_triangle_area(m, t);
     }
     EXPECT_NEAR(rest, 3.0, 1e-5);  // (0,0) (2,0) (2,1) (0,2)
     ASSERT_EQ(t + 1, m.triangle_count());
@@ -135,12 +135,12 @@ TEST(ObjLoader, LargeFacesAcrossGroupsAndMaterialsKeepTheirOrder) {
 }
 
 TEST(ObjLoader, NegativeIndicesAreRelative) {
-    const MeshData a = parse(std::string(kSquare) + "f -4 -3 -2\nv 5 5 5\nf -1 -5 -4\n");
+    const MeshData a = parse_test_obj(std::string(kSquare) + "f -4 -3 -2\nv 5 5 5\nf -1 -5 -4\n");
     EXPECT_EQ(a.position, (std::vector<uint32_t>{0, 1, 2, 4, 0, 1}));
 }
 
 TEST(ObjLoader, VertexReferenceFormsMix) {
-    const MeshData m = parse(
+    const MeshData m = parse_test_obj(
         "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvn 0 0 1\nvn 0 0.5 0.5\n"
         "f 1/1/1 2//2 3/2\n");
     EXPECT_EQ(m.position, (std::vector<uint32_t>{0, 1, 2}));
@@ -153,66 +153,66 @@ TEST(ObjLoader, CrlfLineEndsReadLikeLf) {
     const std::string lf = std::string(kSquare) + "vn 0 0 1\nf 1//1 2//1 3//1 4//1\n";
     std::string crlf;
     for (char c : lf) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
-    const MeshData a = parse(lf), b = parse(crlf);
+    const MeshData a = parse_test_obj(lf), b = parse_test_obj(crlf);
     EXPECT_EQ(a.positions, b.positions);
     EXPECT_EQ(a.position, b.position);
     EXPECT_EQ(a.normal, b.normal);
     // line numbers count CRLF once
-    EXPECT_EQ(error_of("v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 9\r\n"),
+    EXPECT_EQ(obj_error_of("v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 9\r\n"),
               "m/x.obj:4: f: vertex index 9 in \"9\" out of range: 3 vertices defined before "
               "this line");
     // a byte order mark is skipped
-    EXPECT_EQ(parse("\xEF\xBB\xBF" + lf).position, a.position);
+    EXPECT_EQ(parse_test_obj("\xEF\xBB\xBF" + lf).position, a.position);
 }
 
 TEST(ObjLoader, AFileWithoutFacesIsEmptyWithAWarning) {
     std::vector<std::string> w;
-    const MeshData m = parse("# nothing\nv 0 0 0\nv 1 0 0\n", &w);
+    const MeshData m = parse_test_obj("# nothing\nv 0 0 0\nv 1 0 0\n", &w);
     EXPECT_EQ(m.triangle_count(), 0u);
     ASSERT_EQ(w.size(), 1u);
     EXPECT_EQ(w[0], "m/x.obj: no faces; the mesh is empty");
-    EXPECT_EQ(parse("").triangle_count(), 0u);
+    EXPECT_EQ(parse_test_obj("").triangle_count(), 0u);
 }
 
 TEST(ObjLoader, OtherStatementsAreIgnored) {
     const MeshData m =
-        parse(std::string(kSquare) +
-              "o thing\ng group\ns 1\nvp 0.5\nl 1 2\np 3\ncurv 0 1 1 2\nf 1 2 3\ns off\n");
+        parse_test_obj(std::string(kSquare) +
+                       "o thing\ng group\ns 1\nvp 0.5\nl 1 2\np 3\ncurv 0 1 1 2\nf 1 2 3\ns off\n");
     EXPECT_EQ(m.triangle_count(), 1u);
 }
 
 TEST(ObjLoader, BadInputNamesFileAndLine) {
     const std::string v3 = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
-    EXPECT_EQ(error_of(v3 + "f 1 2 4\n"),
+    EXPECT_EQ(obj_error_of(v3 + "f 1 2 4\n"),
               "m/x.obj:4: f: vertex index 4 in \"4\" out of range: 3 vertices defined before "
               "this line");
-    EXPECT_EQ(error_of(v3 + "f 1 2 -4\n"),
+    EXPECT_EQ(obj_error_of(v3 + "f 1 2 -4\n"),
               "m/x.obj:4: f: vertex index -4 in \"-4\" out of range: 3 vertices defined before "
               "this line");
-    EXPECT_EQ(error_of(v3 + "f 1 2 0\n"),
+    EXPECT_EQ(obj_error_of(v3 + "f 1 2 0\n"),
               "m/x.obj:4: f: index 0 in \"0\" (OBJ indices start at 1)");
-    EXPECT_EQ(error_of(v3 + "f 1//1 2//1 3//1\n"),
+    EXPECT_EQ(obj_error_of(v3 + "f 1//1 2//1 3//1\n"),
               "m/x.obj:4: f: normal index 1 in \"1//1\" out of range: 0 normals defined before "
               "this line");
-    EXPECT_EQ(error_of(v3 + "vt 0 0\nf 1/2 2/1 3/1\n"),
+    EXPECT_EQ(obj_error_of(v3 + "vt 0 0\nf 1/2 2/1 3/1\n"),
               "m/x.obj:5: f: texture coordinate index 2 in \"1/2\" out of range: 1 texture "
               "coordinate defined before this line");
-    EXPECT_EQ(error_of(v3 + "f 1 2\n"), "m/x.obj:4: f: expected at least 3 vertices, got 2");
-    EXPECT_EQ(error_of(v3 + "f 1 2 3x\n"), "m/x.obj:4: f: malformed vertex reference \"3x\"");
-    EXPECT_EQ(error_of(v3 + "f 1/1/1/1 2 3\n"),
+    EXPECT_EQ(obj_error_of(v3 + "f 1 2\n"), "m/x.obj:4: f: expected at least 3 vertices, got 2");
+    EXPECT_EQ(obj_error_of(v3 + "f 1 2 3x\n"), "m/x.obj:4: f: malformed vertex reference \"3x\"");
+    EXPECT_EQ(obj_error_of(v3 + "f 1/1/1/1 2 3\n"),
               "m/x.obj:4: f: malformed vertex reference \"1/1/1/1\" (expected v, v/vt, v/vt/vn "
               "or v//vn)");
-    EXPECT_EQ(error_of("v 0 0 0\nv 1 0 0\nv 0 1.2.5 0\n"),
+    EXPECT_EQ(obj_error_of("v 0 0 0\nv 1 0 0\nv 0 1.2.5 0\n"),
               "m/x.obj:3: v: malformed number \"1.2.5\"");
-    EXPECT_EQ(error_of("v 0 0 zero\n"), "m/x.obj:1: v: malformed number \"zero\"");
-    EXPECT_EQ(error_of("v 0 0\n"), "m/x.obj:1: v: expected at least 3 numbers, got 2");
-    EXPECT_EQ(error_of("v 0 nan 0\n"), "m/x.obj:1: v: not a finite number \"nan\"");
-    EXPECT_EQ(error_of("v 0 0 -inf\n"), "m/x.obj:1: v: not a finite number \"-inf\"");
-    EXPECT_EQ(error_of("v 0 0 1e39\n"), "m/x.obj:1: v: number out of float range \"1e39\"");
-    EXPECT_EQ(error_of("v 0 0 1e999\n"), "m/x.obj:1: v: number out of range \"1e999\"");
-    EXPECT_EQ(error_of("vn 0 1\n"), "m/x.obj:1: vn: expected 3 numbers, got 2");
+    EXPECT_EQ(obj_error_of("v 0 0 zero\n"), "m/x.obj:1: v: malformed number \"zero\"");
+    EXPECT_EQ(obj_error_of("v 0 0\n"), "m/x.obj:1: v: expected at least 3 numbers, got 2");
+    EXPECT_EQ(obj_error_of("v 0 nan 0\n"), "m/x.obj:1: v: not a finite number \"nan\"");
+    EXPECT_EQ(obj_error_of("v 0 0 -inf\n"), "m/x.obj:1: v: not a finite number \"-inf\"");
+    EXPECT_EQ(obj_error_of("v 0 0 1e39\n"), "m/x.obj:1: v: number out of float range \"1e39\"");
+    EXPECT_EQ(obj_error_of("v 0 0 1e999\n"), "m/x.obj:1: v: number out of range \"1e999\"");
+    EXPECT_EQ(obj_error_of("vn 0 1\n"), "m/x.obj:1: vn: expected 3 numbers, got 2");
     // what passes: signs, exponents, leading dots, tiny numbers
-    const MeshData ok = parse("v +1 -2.5e1 .5\nv 1e-50 0 0\nv 0 1 0\nf 1 2 3\n");
+    const MeshData ok = parse_test_obj("v +1 -2.5e1 .5\nv 1e-50 0 0\nv 0 1 0\nf 1 2 3\n");
     EXPECT_EQ(ok.positions[0], (Vec3{1, -25, 0.5f}));
 }
 
@@ -241,7 +241,7 @@ TEST(ObjLoader, MtlMaterialsAreMapped) {
         "newmtl glass\nKd 0.5\nNi 1.5\nd 0.25\nillum 7\n"
         "newmtl unused\nKd 1 0 0\n";
     std::vector<std::string> w;
-    const MeshData m = parse(kTwoFaces, &w, files);
+    const MeshData m = parse_test_obj(kTwoFaces, &w, files);
     EXPECT_TRUE(w.empty()) << w[0];
     ASSERT_EQ(m.materials.size(), 2u);  // those faces use, in order of use
     EXPECT_EQ(m.material, (std::vector<int32_t>{0, 1, -1}));
@@ -274,7 +274,7 @@ TEST(ObjLoader, MtlEdgeValues) {
         "newmtl gold\nNs 0\nNi 0.5\nTr 0.3\nillum 2\nKs 1.5 0.5 -0.1\n"
         "newmtl glass\nd 0.4\nTr 0.9\n";
     std::vector<std::string> w;
-    const MeshData m = parse(kTwoFaces, &w, files);
+    const MeshData m = parse_test_obj(kTwoFaces, &w, files);
     ASSERT_EQ(m.materials.size(), 2u);
     EXPECT_EQ(m.materials[0].n, 1.0f);                      // Ns ≤ 0 → 1 (n > 0)
     EXPECT_EQ(m.materials[0].ior, 1.0f);                    // Ni < 1 → 1
@@ -289,7 +289,7 @@ TEST(ObjLoader, MtlEdgeValues) {
 
 TEST(ObjLoader, MissingMtlWarnsAndUsesTheDefault) {
     std::vector<std::string> w;
-    const MeshData m = parse(kTwoFaces, &w);
+    const MeshData m = parse_test_obj(kTwoFaces, &w);
     EXPECT_EQ(m.triangle_count(), 3u);
     EXPECT_TRUE(m.materials.empty());
     EXPECT_EQ(m.material, (std::vector<int32_t>{-1, -1, -1}));
@@ -303,7 +303,7 @@ TEST(ObjLoader, UnknownUsemtlWarns) {
     Files files;
     files.text["m/x.mtl"] = "newmtl gold\nKd 1 1 0\n";
     std::vector<std::string> w;
-    const MeshData m = parse(kTwoFaces, &w, files);
+    const MeshData m = parse_test_obj(kTwoFaces, &w, files);
     EXPECT_EQ(m.material, (std::vector<int32_t>{0, -1, -1}));
     ASSERT_EQ(w.size(), 1u);
     EXPECT_EQ(w[0],
@@ -316,12 +316,13 @@ TEST(ObjLoader, LongNamesAreShortenedInWarnings) {
     Files files;
     files.text["m/x.mtl"] = "newmtl gold\nKd 1 1 0\n";
     std::vector<std::string> w;
-    parse("mtllib x.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl " + name + "\nf 1 2 3\n", &w, files);
+    parse_test_obj("mtllib x.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl " + name + "\nf 1 2 3\n", &w,
+                   files);
     ASSERT_EQ(w.size(), 1u);
     EXPECT_EQ(w[0], "m/x.obj:5: usemtl " + std::string(40, 'n') +
                         "\xE2\x80\xA6 (10485760 characters): no such material in the MTL files; "
                         "its faces use the default material");
-    parse("mtllib " + name + "\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", &w, files);
+    parse_test_obj("mtllib " + name + "\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", &w, files);
     ASSERT_EQ(w.size(), 1u);
     EXPECT_LT(w[0].size(), 400u);
     EXPECT_THAT(w[0], HasSubstr("characters): No such file or directory"));
@@ -329,7 +330,7 @@ TEST(ObjLoader, LongNamesAreShortenedInWarnings) {
 
 TEST(ObjLoader, MaterialsAreNotReadWhenTheObjectNamesOne) {
     std::vector<std::string> w;
-    const MeshData m = parse(kTwoFaces, &w, {}, /*with_materials=*/false);
+    const MeshData m = parse_test_obj(kTwoFaces, &w, {}, /*with_materials=*/false);
     EXPECT_TRUE(w.empty());
     EXPECT_EQ(m.material, (std::vector<int32_t>{-1, -1, -1}));
 }
@@ -337,11 +338,11 @@ TEST(ObjLoader, MaterialsAreNotReadWhenTheObjectNamesOne) {
 TEST(ObjLoader, BadMtlNamesTheMtlFileAndLine) {
     Files files;
     files.text["m/x.mtl"] = "newmtl gold\nKd 1 1 0\nNs 1O0\n";
-    EXPECT_EQ(error_of(kTwoFaces, files), "m/x.mtl:3: Ns: malformed number \"1O0\"");
+    EXPECT_EQ(obj_error_of(kTwoFaces, files), "m/x.mtl:3: Ns: malformed number \"1O0\"");
     files.text["m/x.mtl"] = "newmtl gold\nKd 1 1\n";
-    EXPECT_EQ(error_of(kTwoFaces, files), "m/x.mtl:2: Kd: expected 1 or 3 numbers, got 2");
+    EXPECT_EQ(obj_error_of(kTwoFaces, files), "m/x.mtl:2: Kd: expected 1 or 3 numbers, got 2");
     files.text["m/x.mtl"] = "newmtl gold\nillum three\n";
-    EXPECT_EQ(error_of(kTwoFaces, files),
+    EXPECT_EQ(obj_error_of(kTwoFaces, files),
               "m/x.mtl:2: illum: expected an integer, got \"illum three\"");
 }
 
