@@ -6,7 +6,8 @@
 # way — and cost a second build of the libraries and four whole-program links; the libraries
 # compiled as unity files, as the sanitizer pass compiles them: a third less compile time),
 # and in Debug with AddressSanitizer and UndefinedBehaviorSanitizer (the `sanitize` preset:
-# `dev` with line tables only, -g1).
+# `dev` with line tables only, -g1; without luz-mpi and the viewer). The Python bindings and the
+# web page are compiled at -O1 (LUZ_QUICK_BINDINGS).
 #   scripts/test.sh                  all of it (CI runs this)
 #   scripts/test.sh --release-only   without the sanitizer pass
 #   scripts/test.sh --save-costs     keep the last run's test times in tests/ctest_costs/ (for
@@ -67,13 +68,16 @@ seed_costs() {
   mkdir -p "$dir" && cp "tests/ctest_costs/$1.txt" "$dir/CTestCostData.txt"
 }
 
-cmake --preset release -DLUZ_PGO=OFF -DLUZ_LTO=OFF -DCMAKE_UNITY_BUILD=ON >/dev/null
+cmake --preset release -DLUZ_PGO=OFF -DLUZ_LTO=OFF -DCMAKE_UNITY_BUILD=ON \
+  -DLUZ_QUICK_BINDINGS=ON >/dev/null
 step "Release build" cmake --build --preset release
 seed_costs release
 step "Release tests" ctest --preset release -j "$jobs"
 
 if ((sanitize)); then
-  cmake --preset sanitize >/dev/null
+  # Without luz-mpi and the viewer: their tests wait on processes and a display, one test at a
+  # time (RUN_SERIAL), two minutes of the pass; the Release pass runs them.
+  cmake --preset sanitize -DLUZ_BUILD_MPI=OFF -DLUZ_BUILD_VIEWER=OFF >/dev/null
   step "Debug build with ASan + UBSan" cmake --build --preset sanitize
   seed_costs sanitize
   step "Sanitizer tests" env ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
