@@ -70,6 +70,7 @@ void nearest_hits(const BuiltScene& scene, const Ray* rays, int n, float t_min, 
                   Hit* hits, bool* found, IntersectCounters& counters) {
     timed(counters, [&] {
         if (use_bvh(scene)) {
+            ++counters.nearest_packets;
             LUZ_KERNEL(nearest_hits_bvh, scene, rays, n, t_min, t_max, hits, found, counters);
         } else {
             for (int k = 0; k < n; ++k)
@@ -113,6 +114,7 @@ void transmittances(const BuiltScene& scene, const Materials& materials, const S
         // Coherent segments go down together while lit points come in a run (the cache empty:
         // the last segments went unblocked); behind an occluder, its cached block first.
         if (coherent && c.lanes == 0) {
+            ++counters.shadow_packets;
             timed(counters, [&] {
                 LUZ_KERNEL(transmittances_bvh, scene, materials, s, active, T, counters, c);
                 return true;

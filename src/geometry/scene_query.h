@@ -43,10 +43,12 @@ namespace luz {
 using Materials = std::vector<Material>;
 
 struct IntersectCounters {
-    uint64_t primitive = 0;  ///< ray–shape and ray–triangle tests
-    uint64_t bounds = 0;     ///< ray–box tests (object bounds, BVH nodes)
-    bool timing = false;     ///< measure the time spent in nearest_hit and transmittance
-    uint64_t query_ns = 0;   ///< nanoseconds spent in them while timing
+    uint64_t primitive = 0;        ///< ray–shape and ray–triangle tests
+    uint64_t bounds = 0;           ///< ray–box tests (object bounds, BVH nodes)
+    uint64_t nearest_packets = 0;  ///< nearest_hits() calls that took their rays side by side
+    uint64_t shadow_packets = 0;   ///< transmittances() calls whose segments went down as one
+    bool timing = false;           ///< measure the time spent in nearest_hit and transmittance
+    uint64_t query_ns = 0;         ///< nanoseconds spent in them while timing
 };
 
 /// Whether ray r meets box b in (t_min, t_max) (slab test; inv_dir = 1/direction).
