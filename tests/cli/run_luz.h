@@ -9,14 +9,9 @@
 #include <string>
 #include <vector>
 
-namespace luz::test {
+#include "sanitizer.h"  // kSlowdown
 
-/// How much longer than in Release the code under test may take: a Debug build under ASan.
-#if defined(__SANITIZE_ADDRESS__)
-inline constexpr double kSlowdown = 10;
-#else
-inline constexpr double kSlowdown = 1;
-#endif
+namespace luz::test {
 
 struct RunResult {
     int status = -1;  ///< exit status, or 128 + signal when killed

@@ -188,8 +188,8 @@ class CheckpointMpi : public ProcessFailure {
   protected:
     void interrupt_then_resume(const std::vector<std::string>& scene) {
 #if defined(__SANITIZE_ADDRESS__)
-        // Three renders of many seconds each, 80 s of a sanitizer build run alone. Checkpoints
-        // (Checkpoint.*) and MPI runs (SameBytes, ProcessFailure) run under the sanitizers.
+        // Three renders of many seconds each, 80 s of a sanitizer build run alone; checkpoints
+        // run under the sanitizers in Checkpoint.* (scripts/test.sh's pass has no luz-mpi).
         GTEST_SKIP() << "the Release pass checks an MPI run's checkpoint";
 #endif
         auto with = [&](std::vector<std::string> extra) {
