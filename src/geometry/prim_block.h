@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "geometry/ray_cylinder.h"
 #include "geometry/ray_triangle.h"
 #include "geometry/sphere_group.h"
 #include "math/lane4.h"
@@ -15,8 +16,10 @@ namespace luz {
 
 /// Slots 4b … 4b+3 of the scene's BVH: in lane k a bounded shape (triangle[k] = kNotTriangle),
 /// a sphere in world form (triangle[k] = kSphere: centre v[0][axis][k], radius · radius
-/// v[1][0][k], radius v[1][1][k]), a shape around an axis (triangle[k] = kAroundAxis: see
-/// axis_lanes_missed()) or one triangle of a mesh shape with its world vertices, by
+/// v[1][0][k], radius v[1][1][k]), an open cylinder in world form (triangle[k] = kCylinder:
+/// base v[0][axis][k], unit axis v[1][axis][k], radius · radius v[2][0][k], height v[2][1][k]),
+/// another shape around an axis (triangle[k] = kAroundAxis: see axis_lanes_missed()) or one
+/// triangle of a mesh shape with its world vertices, by
 /// corner and axis (v[corner][axis][k]), so that one load gives an axis of a corner for all
 /// four. Lanes past a leaf's end are padding (kPadding: no shape, NaN vertices) that no
 /// traversal offers.
@@ -27,6 +30,8 @@ struct alignas(16) PrimBlock {
     static constexpr uint32_t kSphere = 0xFFFFFFFDu;   ///< `triangle` of a world-form sphere
     /// `triangle` of a shape within distance R of a line (cylinder, cone: axis_lanes_missed()).
     static constexpr uint32_t kAroundAxis = 0xFFFFFFFCu;
+    /// `triangle` of an open cylinder in world form (tested as cylinder_lanes_roots() does).
+    static constexpr uint32_t kCylinder = 0xFFFFFFFBu;
 
     float v[3][3][kLanes];
     uint32_t shape[kLanes];
@@ -41,6 +46,12 @@ struct alignas(16) PrimBlock {
     unsigned axis_lanes() const { return lane_bits(triangles() == lane4i(kAroundAxis)); }
     /// Lanes holding world-form spheres.
     unsigned sphere_lanes() const { return lane_bits(triangles() == lane4i(kSphere)); }
+    /// Lanes holding open cylinders in world form.
+    unsigned cylinder_lanes() const { return lane_bits(triangles() == lane4i(kCylinder)); }
+    /// The cylinder lanes `used` as cylinder_lanes_roots() takes them.
+    CylinderLanes cylinders(unsigned used) const {
+        return {v[0][0], v[0][1], v[0][2], v[1][0], v[1][1], v[1][2], v[2][0], v[2][1], used};
+    }
     /// The sphere lanes `used` as sphere_lanes_roots() takes them.
     SphereLanes spheres(unsigned used) const {
         return {v[0][0], v[0][1], v[0][2], v[1][0], v[1][1], used};

@@ -107,13 +107,15 @@ struct BlockTest {
 }
 
 /// The shape lanes `shapes` of block b against r, up to the decision: its world-form spheres
-/// four at a time (sphere_lanes_roots(), ahead only when t_min ≥ 0: the lanes met at roots
-/// `spheres.t0`, `spheres.t1`, `spheres.hit`, counted), its shapes around an axis ruled out
-/// four at a time where axis_lanes_missed() can (one bounds test), and the lanes left to test
-/// one shape at a time (`one_by_one`: other shapes, the axis lanes not ruled out, the spheres
-/// needing world_sphere_roots()'s double path; counted by their tests).
+/// and open cylinders four at a time (sphere_lanes_roots(), cylinder_lanes_roots(), ahead only
+/// when t_min ≥ 0: the lanes met at roots `spheres.t0`, `spheres.t1`, `spheres.hit`, and the
+/// same of `cylinders`, counted), its other shapes around an axis ruled out four at a time where
+/// axis_lanes_missed() can (one bounds test), and the lanes left to test one shape at a time
+/// (`one_by_one`: other shapes, the axis lanes not ruled out, the spheres and cylinders float
+/// cannot be trusted with; counted by their tests).
 struct ShapeTest {
     SphereGroupRoots spheres;
+    CylinderGroupRoots cylinders;
     unsigned one_by_one = 0;
 };
 [[gnu::always_inline]] inline ShapeTest test_shapes(const PrimBlock& b, unsigned shapes,
@@ -129,6 +131,11 @@ struct ShapeTest {
         r.spheres = sphere_lanes_roots(b.spheres(spheres), ray, t_min >= 0);
         r.one_by_one &= ~spheres | r.spheres.slow;
         counters.primitive += static_cast<uint64_t>(lane_count(spheres & ~r.spheres.slow));
+    }
+    if (const unsigned cylinders = b.cylinder_lanes() & shapes; cylinders != 0) {
+        r.cylinders = cylinder_lanes_roots(b.cylinders(cylinders), ray, t_min >= 0);
+        r.one_by_one &= ~cylinders | r.cylinders.slow;
+        counters.primitive += static_cast<uint64_t>(lane_count(cylinders & ~r.cylinders.slow));
     }
     return r;
 }
@@ -152,13 +159,16 @@ template <class Visit>
                                                  unsigned shapes, const Ray& r, float t_min,
                                                  Best& best, IntersectCounters& counters) {
     const ShapeTest test = test_shapes(b, shapes, r, t_min, counters);
-    for (unsigned hit = test.spheres.hit; hit != 0; hit &= hit - 1) {
-        const int k = __builtin_ctz(hit);
-        float t;  // the root intersect() would choose
-        if (nearest_root(test.spheres.t0[k], test.spheres.t1[k], t_min, best.limit(), t) &&
-            best.better(t, b.shape[k], 0))
-            best.take(t, b.shape[k], 0, 0.0f, 0.0f, part_side);
-    }
+    const auto offer_roots = [&](unsigned hit, const float* t0, const float* t1) {
+        for (; hit != 0; hit &= hit - 1) {
+            const int k = __builtin_ctz(hit);
+            float t;  // the root intersect() would choose
+            if (nearest_root(t0[k], t1[k], t_min, best.limit(), t) && best.better(t, b.shape[k], 0))
+                best.take(t, b.shape[k], 0, 0.0f, 0.0f, part_side);
+        }
+    };
+    offer_roots(test.spheres.hit, test.spheres.t0, test.spheres.t1);
+    offer_roots(test.cylinders.hit, test.cylinders.t0, test.cylinders.t1);
     for (unsigned s = test.one_by_one; s != 0; s &= s - 1)
         offer_shape(scene, b.shape[__builtin_ctz(s)], r, t_min, best, counters);
 }
@@ -295,6 +305,16 @@ inline bool cross_triangle(const BuiltScene& scene, const Materials& materials,
         const uint32_t n = roots_within(test.spheres.t0[k], test.spheres.t1[k], t_min, t_max);
         if (n > 0 && !add_crossings(materials, scene.shapes[b.shape[k]].material, n, crossings))
             return false;
+    }
+    for (unsigned hit = test.cylinders.hit; hit != 0; hit &= hit - 1) {
+        const int k = __builtin_ctz(hit);  // as cross_shape() counts them
+        const uint32_t n = roots_within(test.cylinders.t0[k], test.cylinders.t1[k], t_min, t_max);
+        if (n == 0) continue;
+        const uint32_t i = b.shape[k];
+        if (scene.shapes[i].split && materials[scene.shapes[i].material].transparency > 0 &&
+            !crossings.first_meeting(i))
+            continue;  // counted at another piece
+        if (!add_crossings(materials, scene.shapes[i].material, n, crossings)) return false;
     }
     for (unsigned s = test.one_by_one; s != 0; s &= s - 1) {
         if (!cross_shape(scene, materials, b.shape[__builtin_ctz(s)], r, t_min, t_max, crossings,

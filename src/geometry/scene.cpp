@@ -228,6 +228,15 @@ void build_bvh(BuiltScene& scene) {
                 b.v[1][0][k] = s.radius * s.radius;  // as world_sphere_roots() rounds it
                 b.v[1][1][k] = s.radius;
                 b.triangle[k] = PrimBlock::kSphere;
+            } else if (p.triangle == BvhPrim::kNotTriangle && s.world_form &&
+                       s.type == ShapeType::cylinder) {  // as world_cylinder_roots() takes it
+                for (int a = 0; a < 3; ++a) {
+                    b.v[0][a][k] = s.centre[a];
+                    b.v[1][a][k] = s.normal[a];
+                }
+                b.v[2][0][k] = s.radius * s.radius;
+                b.v[2][1][k] = s.offset;
+                b.triangle[k] = PrimBlock::kCylinder;
             } else if (p.triangle == BvhPrim::kNotTriangle &&
                        (s.type == ShapeType::cylinder || s.type == ShapeType::cone)) {
                 set_axis_lane(b, static_cast<int>(k), s.transform.world_from_object);

@@ -51,8 +51,9 @@ struct BuiltScene {
     BvhPrim bvh_prim(uint32_t s) const {
         const PrimBlock& b = bvh_blocks[s / PrimBlock::kLanes];
         const int k = static_cast<int>(s % PrimBlock::kLanes);
-        const bool shape =
-            b.triangle[k] == PrimBlock::kSphere || b.triangle[k] == PrimBlock::kAroundAxis;
+        const bool shape = b.triangle[k] == PrimBlock::kSphere ||
+                           b.triangle[k] == PrimBlock::kAroundAxis ||
+                           b.triangle[k] == PrimBlock::kCylinder;
         const uint32_t tri = shape ? BvhPrim::kNotTriangle : b.triangle[k];
         return {b.corner(0, k), b.corner(1, k), b.corner(2, k), b.shape[k], tri};
     }

@@ -39,13 +39,15 @@ struct Shape {
     /// slanted cylinder or cone): a shadow ray counts its crossings once (query::Crossings).
     bool split = false;
 
-    /// World-space form, for the ray tracer's fast path (shapes/sphere.h, shapes/plane.h): set for
-    /// every plane (n·p = offset, n the unit outward normal) and for a sphere whose transform is a
-    /// similarity (|p − centre| = radius); other shapes are hit in object space.
+    /// World-space form, for the ray tracer's fast path (shapes/sphere.h, shapes/plane.h,
+    /// shapes/cylinder.h): set for every plane (n·p = offset, n the unit outward normal), for a
+    /// sphere whose transform is a similarity (|p − centre| = radius) and for an open cylinder
+    /// that stays round (base `centre`, unit axis `normal`, `radius`, height `offset`); other
+    /// shapes are hit in object space.
     bool world_form = false;
-    Vec3 centre, normal;  ///< sphere: centre; plane: unit normal n
-    float radius = 0;     ///< sphere: radius
-    float offset = 0;     ///< plane: n·p for its points p
+    Vec3 centre, normal;  ///< sphere: centre; plane: unit normal n; cylinder: base, unit axis
+    float radius = 0;     ///< sphere, cylinder: radius
+    float offset = 0;     ///< plane: n·p for its points p; cylinder: height
 };
 
 /// The runtime shape of an object description (validated: non-degenerate): its type's

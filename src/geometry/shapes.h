@@ -47,7 +47,8 @@ template <class F>
 #endif
 
 /// Nearest hit of world ray r with shape s in the open interval (t_min, t_max). Spheres under a
-/// similarity and planes are hit in world space (Shape::world_form); the other shapes in
+/// similarity, open round cylinders and planes are hit in world space (Shape::world_form); the
+/// other shapes in
 /// object space (transform.to_object, direction not normalised), so t is the same in both
 /// spaces. Valid for rays starting inside the shape (refraction). A mesh tests every
 /// triangle (intersect_mesh); the scene queries use the BVH instead.
@@ -60,7 +61,7 @@ template <class F>
 
 /// How many times r crosses s in (t_min, t_max) (a closed shape counts twice), or at most 1
 /// with `first_only` (enough to know an opaque shape blocks); `tests` counts the ray–shape
-/// tests made. Planes and spheres in world form count their roots directly; other shapes
+/// tests made. Planes, spheres and cylinders in world form count their roots directly; others
 /// repeat intersect() past each crossing (up to 64).
 [[gnu::always_inline]] inline uint32_t count_crossings(const Shape& s, const Ray& r, float t_min,
                                                        float t_max, bool first_only,

@@ -152,8 +152,8 @@ struct RandomRays {
 };
 
 /// Thin and thick cylinders and cones (capped or open, opaque or glass), sheared, mirrored and
-/// scaled by the user transforms, among spheres: the cylinders are axis lanes (prim_block.h)
-/// pre-tested four at a time.
+/// scaled by the user transforms, among spheres: the open round cylinders are cylinder lanes
+/// (prim_block.h) tested four at a time, the others axis lanes pre-tested four at a time.
 inline std::vector<ObjectDesc> cylinder_field(Rng& rng) {
     std::vector<ObjectDesc> objects;
     const auto transforms = test::user_transforms();

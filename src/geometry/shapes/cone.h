@@ -60,7 +60,11 @@ struct cone {
         const double a = d.x * d.x + d.y * d.y - wd * wd;
         const double b = o.x * d.x + o.y * d.y + w0 * wd;
         const double c = o.x * o.x + o.y * o.y - w0 * w0;
-        const double disc = b * b - a * c;
+        // Outside (c > 0), moving outwards (b > 0) and a ≥ 0, as most rays leaving the side
+        // outwards: both roots are negative (q < 0: c/q < 0, q/a < 0 or −∞), and
+        // Nearest::offer() would reject them for t_min ≥ 0, so they are not computed.
+        const bool behind = c > 0 && b > 0 && a >= 0 && n.t_min >= 0;
+        const double disc = behind ? -1.0 : b * b - a * c;
         if (disc >= 0) {
             double r[2];
             quadratic_roots(a, b, c, disc, r[0], r[1]);  // a = 0 (parallel to a generator): c/q

@@ -1,9 +1,12 @@
 // Cylinder: radius 1 around +z, z ∈ [0, 1] in object space, placed from `base` along `axis` by
-// `radius` and `height`; `caps` closes z = 0 and z = 1 (Hit::part part_cap0, part_cap1).
+// `radius` and `height`; `caps` closes z = 0 and z = 1 (Hit::part part_cap0, part_cap1). An open
+// cylinder whose transform keeps it round is hit in world form (base, axis, radius, height:
+// ray_cylinder.h), falling back to object space in double where float cannot be trusted.
 #pragma once
 
 #include <cstdint>
 
+#include "geometry/ray_cylinder.h"
 #include "geometry/shapes/caps.h"
 #include "geometry/shapes/emitter.h"
 #include "geometry/shapes/object_space.h"
@@ -14,9 +17,27 @@ namespace luz::shapes {
 struct cylinder {
     static constexpr bool bounded = true;
 
+    /// Placement, and the world form (centre: the base; normal: the unit axis; radius; offset:
+    /// the height) of an open cylinder whose transform keeps it round: x and y columns of one
+    /// length, the three columns perpendicular.
     static void place(const ObjectDesc& o, Shape& s) {
         set_transform(s, o, frame_along(o.axis, o.radius, o.radius, o.height, o.base));
         s.caps = o.caps;
+        const Affine& M = s.transform.world_from_object;
+        const Vec3 U = column(M, 0), V = column(M, 1), W = column(M, 2);
+        const float uu = dot(U, U), ww = dot(W, W);
+        const float tol = 16.0f * std::numeric_limits<float>::epsilon();
+        const bool round = std::fabs(dot(V, V) - uu) <= tol * uu &&
+                           std::fabs(dot(U, V)) <= tol * uu &&
+                           std::fabs(dot(U, W)) <= tol * std::sqrt(uu * ww) &&
+                           std::fabs(dot(V, W)) <= tol * std::sqrt(uu * ww);
+        if (!s.caps && round && uu > 0 && ww > 0) {
+            s.world_form = true;
+            s.centre = origin(M);
+            s.normal = W / std::sqrt(ww);
+            s.radius = std::sqrt(uu);
+            s.offset = std::sqrt(ww);
+        }
     }
 
     static Bounds3 bounds(const Shape& s) {
@@ -42,9 +63,13 @@ struct cylinder {
         const double a = d.x * d.x + d.y * d.y;
         if (a > 0) {
             const double b = o.x * d.x + o.y * d.y, c = o.x * o.x + o.y * o.y - 1.0;
+            // Outside the side (c > 0) and moving away from the axis (b > 0), as every ray
+            // leaving the side outwards: both roots are negative (q < 0: c/q, q/a < 0), and
+            // Nearest::offer() would reject them for t_min ≥ 0, so they are not computed.
+            const bool behind = c > 0 && b > 0 && n.t_min >= 0;
             // as for the sphere, in the xy projection: disc = a·(1 − |o⊥ − (b/a)·d⊥|²)
             const double lx = o.x - b / a * d.x, ly = o.y - b / a * d.y;
-            const double disc = a * (1.0 - (lx * lx + ly * ly));
+            const double disc = behind ? -1.0 : a * (1.0 - (lx * lx + ly * ly));
             if (disc >= 0) {
                 double r[2];
                 quadratic_roots(a, b, c, disc, r[0], r[1]);
@@ -58,20 +83,45 @@ struct cylinder {
         return n.found;
     }
 
-    static bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit) {
+    /// The world form's roots (world_cylinder_roots(); `slow`: test in object space).
+    static CylinderRoots world_roots(const Shape& s, const Ray& r, float& t0, float& t1) {
+        return world_cylinder_roots(s.centre, s.normal, s.radius * s.radius, s.offset, r, t0, t1);
+    }
+
+    static bool intersect_object(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit) {
         return intersect_in_object_space(s, r, t_min, t_max, hit, [&](const Ray& ro, Nearest& n) {
             return hit_object(s, ro, n);
         });
     }
 
+    static bool intersect(const Shape& s, const Ray& r, float t_min, float t_max, Hit& hit) {
+        float t0 = 0, t1 = 0;
+        const CylinderRoots met = s.world_form ? world_roots(s, r, t0, t1) : CylinderRoots::slow;
+        if (met == CylinderRoots::slow) return intersect_object(s, r, t_min, t_max, hit);
+        return met == CylinderRoots::met && hit_at_roots(t0, t1, t_min, t_max, hit);
+    }
+
     static uint32_t count_crossings(const Shape& s, const Ray& r, float t_min, float t_max,
                                     bool first_only, uint64_t& tests) {
+        float t0 = 0, t1 = 0;
+        const CylinderRoots met = s.world_form ? world_roots(s, r, t0, t1) : CylinderRoots::slow;
+        if (met != CylinderRoots::slow)
+            return crossings_at_roots(met == CylinderRoots::met, t0, t1, t_min, t_max, first_only,
+                                      tests);
         return count_by_repeated_hits(
             t_min, t_max, first_only, tests,
-            [&](float t0, float t1, Hit& h) { return intersect(s, r, t0, t1, h); });
+            [&](float t0, float t1, Hit& h) { return intersect_object(s, r, t0, t1, h); });
     }
 
     static SurfacePoint surface_at(const Shape& s, const Ray& r, const Hit& hit) {
+        if (s.world_form) {  // N: the hit point's part across the axis (open: the side only)
+            SurfacePoint sp;
+            sp.P = r.at(hit.t);
+            const Vec3 e = sp.P - s.centre;
+            sp.N = unit_or(e - s.normal * dot(e, s.normal), {1, 0, 0});
+            sp.Ng = sp.N;
+            return sp;
+        }
         return surface_from_object_normal(s, r, hit, [](const Vec3& p, int part) {
             if (part == part_side) return unit_or({p.x, p.y, 0}, {1, 0, 0});
             return Vec3{0, 0, part == part_cap0 ? -1.0f : 1.0f};
