@@ -51,8 +51,7 @@ Vec3 Mesh::face_normal(size_t t) const {
     return n == Vec3{0.0f} ? Vec3{0, 0, 1} : n;
 }
 
-Vec3 Mesh::shading_normal(size_t t, float b1, float b2) const {
-    const Vec3 Ng = face_normal(t);
+Vec3 Mesh::shading_normal(size_t t, float b1, float b2, const Vec3& Ng) const {
     if (normals.empty()) return Ng;
     const Vec3& n0 = normals[indices[3 * t]];
     const Vec3& n1 = normals[indices[3 * t + 1]];

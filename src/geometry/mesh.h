@@ -31,7 +31,11 @@ struct Mesh {
     Vec3 face_normal(size_t t) const;
     /// The unit shading normal at barycentrics (b1, b2) of triangle t: the vertex normals
     /// interpolated (smooth), else the face normal; turned to the face normal's side.
-    Vec3 shading_normal(size_t t, float b1, float b2) const;
+    Vec3 shading_normal(size_t t, float b1, float b2) const {
+        return shading_normal(t, b1, b2, face_normal(t));
+    }
+    /// The same, given triangle t's face normal Ng (face_normal(t)).
+    Vec3 shading_normal(size_t t, float b1, float b2, const Vec3& Ng) const;
 };
 
 /// The world-space mesh of a mesh object (o.mesh loaded): positions by o.transform, normals by

@@ -39,8 +39,10 @@ void edges_in_double(float Ax, float Ay, float Bx, float By, float Cx, float Cy,
 }  // namespace watertight_detail
 
 /// Prepares ray r (any non-zero direction) for intersect_triangle(). Inlined, with indexed
-/// loads and no branches: every ray of a mesh starts here.
-inline WatertightRay prepare_watertight(const Ray& r) {
+/// loads, no branches and one division: every ray of a mesh starts here. (The shear S need not
+/// be d's ratios correctly rounded: each ray's tests share its S, which is all watertightness
+/// asks of it.)
+[[gnu::always_inline]] inline WatertightRay prepare_watertight(const Ray& r) {
     using watertight_detail::at;
     WatertightRay w;
     w.origin = r.origin;
@@ -51,9 +53,9 @@ inline WatertightRay prepare_watertight(const Ray& r) {
     w.ky = w.kx == 2 ? 0 : w.kx + 1;
     const float dz = at(r.direction, w.kz);
     if (dz < 0) std::swap(w.kx, w.ky);  // keeps the winding's sign
-    w.Sx = at(r.direction, w.kx) / dz;
-    w.Sy = at(r.direction, w.ky) / dz;
     w.Sz = 1.0f / dz;
+    w.Sx = at(r.direction, w.kx) * w.Sz;
+    w.Sy = at(r.direction, w.ky) * w.Sz;
     w.ox = at(r.origin, w.kx);
     w.oy = at(r.origin, w.ky);
     w.oz = at(r.origin, w.kz);

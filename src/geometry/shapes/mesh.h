@@ -44,7 +44,8 @@ struct mesh {
     /// World space; N interpolated (smooth) on the face normal's side, Ng the face normal.
     static SurfacePoint surface_at(const Shape& s, const Ray& r, const Hit& hit) {
         const size_t t = static_cast<size_t>(hit.part);
-        return {r.at(hit.t), s.mesh->shading_normal(t, hit.u, hit.v), s.mesh->face_normal(t)};
+        const Vec3 Ng = s.mesh->face_normal(t);
+        return {r.at(hit.t), s.mesh->shading_normal(t, hit.u, hit.v, Ng), Ng};
     }
 
     /// The mesh's own triangles, in order, whatever the level. Smooth: its shared vertices and
