@@ -123,19 +123,22 @@ struct ShapeTest {
                                                     IntersectCounters& counters) {
     ShapeTest r;
     r.one_by_one = shapes;
-    if (const unsigned axis = b.axis_lanes() & shapes; axis != 0) {
-        r.one_by_one &= ~axis_lanes_missed(b, axis, ray);
-        ++counters.bounds;
+    const unsigned spheres = b.sphere_lanes() & shapes;
+    if (shapes & ~spheres) {  // a block of spheres alone (the sphereflake's) skips these
+        if (const unsigned axis = b.axis_lanes() & shapes; axis != 0) {
+            r.one_by_one &= ~axis_lanes_missed(b, axis, ray);
+            ++counters.bounds;
+        }
+        if (const unsigned cylinders = b.cylinder_lanes() & shapes; cylinders != 0) {
+            r.cylinders = cylinder_lanes_roots(b.cylinders(cylinders), ray, t_min >= 0);
+            r.one_by_one &= ~cylinders | r.cylinders.slow;
+            counters.primitive += static_cast<uint64_t>(lane_count(cylinders & ~r.cylinders.slow));
+        }
     }
-    if (const unsigned spheres = b.sphere_lanes() & r.one_by_one; spheres != 0) {
+    if (spheres != 0) {
         r.spheres = sphere_lanes_roots(b.spheres(spheres), ray, t_min >= 0);
         r.one_by_one &= ~spheres | r.spheres.slow;
         counters.primitive += static_cast<uint64_t>(lane_count(spheres & ~r.spheres.slow));
-    }
-    if (const unsigned cylinders = b.cylinder_lanes() & shapes; cylinders != 0) {
-        r.cylinders = cylinder_lanes_roots(b.cylinders(cylinders), ray, t_min >= 0);
-        r.one_by_one &= ~cylinders | r.cylinders.slow;
-        counters.primitive += static_cast<uint64_t>(lane_count(cylinders & ~r.cylinders.slow));
     }
     return r;
 }
