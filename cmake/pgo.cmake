@@ -6,7 +6,9 @@
 # optimised as without a profile (-fprofile-partial-training). No floating-point option
 # changes: the images are the same bits as without PGO. Delete <build>/pgo to train again after
 # large changes (a stale profile is only less useful: source changes are ignored with their
-# warning silenced).
+# warning silenced, and counts a change made inconsistent — code newly inlined into a function
+# the profile knows — are smoothed by -fprofile-correction, where GCC would stop with "corrupted
+# profile info"; so are the counts two training threads raced on).
 if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
   message(FATAL_ERROR "LUZ_PGO needs GCC (its -fprofile-use and -fprofile-prefix-path)")
 endif()
@@ -19,7 +21,8 @@ set(luz_pgo_stamp ${luz_pgo_dir}/profile.stamp)
 # The profile files are named by the object's path within its build folder (prefix-path), so the
 # training build's CMakeFiles/luz_render.dir/… profiles are found by this build's same objects.
 add_compile_options(-fprofile-use=${luz_pgo_dir}/profile -fprofile-prefix-path=${PROJECT_BINARY_DIR}
-                    -fprofile-partial-training -Wno-missing-profile -Wno-coverage-mismatch)
+                    -fprofile-partial-training -fprofile-correction -Wno-missing-profile
+                    -Wno-coverage-mismatch)
 add_custom_command(
   OUTPUT ${luz_pgo_stamp}
   COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -DPGO_DIR=${luz_pgo_dir}
@@ -27,6 +30,7 @@ add_custom_command(
           -DPIC=$<BOOL:${CMAKE_POSITION_INDEPENDENT_CODE}>
           -P ${PROJECT_SOURCE_DIR}/cmake/pgo_train.cmake
   DEPENDS ${PROJECT_SOURCE_DIR}/cmake/pgo_train.cmake ${PROJECT_SOURCE_DIR}/scripts/make_big_mesh.py
+          ${PROJECT_SOURCE_DIR}/bench/spd_gen.py
   COMMENT "PGO: building an instrumented luz and running the training renders"
   USES_TERMINAL)
 add_custom_target(luz_pgo_profile DEPENDS ${luz_pgo_stamp})

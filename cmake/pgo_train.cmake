@@ -1,7 +1,8 @@
 # The training of LUZ_PGO (cmake/pgo.cmake), run as cmake -P with SOURCE_DIR, PGO_DIR, GENERATOR,
 # CXX, NATIVE (LUZ_NATIVE) and PIC (position-independent code): an instrumented luz of the same
 # sources and flags, then short renders of scenes that no benchmark times (the three pipelines,
-# the antialiasing modes, glass and mirrors, a mesh through the BVH), a few seconds.
+# the antialiasing modes, glass and mirrors, a mesh through the BVH, shapes in its lanes), a few
+# seconds.
 set(build ${PGO_DIR}/build)
 set(profile ${PGO_DIR}/profile)
 execute_process(
@@ -37,9 +38,18 @@ file(WRITE ${PGO_DIR}/train/mesh.json [=[{
   ]
 }]=])
 
+# Shapes in the BVH's lanes (spheres, open cylinders, frusta) with many shadow rays: three SPD
+# scenes at size factors no benchmark renders (bench/spd.sh times the SPD's files, balls 4,
+# rings 7, tree 11; bench/spd_sizes.py balls 3–5, rings 5–10, tree 11–14), NFF read directly.
+foreach(scene balls:2 rings:3 tree:8)
+  string(REPLACE ":" ";" scene ${scene})
+  execute_process(COMMAND ${python3} ${SOURCE_DIR}/bench/spd_gen.py ${scene} --out ${PGO_DIR}/train
+                  OUTPUT_QUIET COMMAND_ERROR_IS_FATAL ANY)
+endforeach()
+
 # Not demo:whitted (bench/whitted_vs_povray.sh, aa_quality, cost_growth, mpi_scaling,
 # python_overhead), the bunny (bench/bvh_vs_embree), the big mesh, demo:primitives through the
-# zbuffer (`luz view --benchmark`) nor the SPD's .nff scenes (bench/spd.sh).
+# zbuffer (`luz view --benchmark`) nor the SPD's .nff scenes at the sizes above.
 set(runs
   "demo:materials --width 320 --height 240 -o materials.png"
   "demo:materials --width 160 --height 120 --aa adaptive -o materials_adaptive.exr"
@@ -51,7 +61,10 @@ set(runs
   "${SOURCE_DIR}/scenes/figures/terms.json --pipeline zbuffer --aa adaptive -o terms.png"
   "${SOURCE_DIR}/scenes/exploding_glass.json --width 96 --height 72 --max-depth 8 -o glass.png"
   "mesh.json -o mesh.png"
-  "mesh.json --pipeline zbuffer --aa adaptive -o mesh_zbuffer.png")
+  "mesh.json --pipeline zbuffer --aa adaptive -o mesh_zbuffer.png"
+  "balls.nff --width 128 --height 128 -o balls.png"
+  "rings.nff --width 128 --height 128 -o rings.png"
+  "tree.nff --width 128 --height 128 -o tree.png")
 foreach(run IN LISTS runs)
   separate_arguments(args UNIX_COMMAND "${run}")
   foreach(threads 1 2)
