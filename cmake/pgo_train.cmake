@@ -43,8 +43,11 @@ file(WRITE ${PGO_DIR}/train/mesh.json [=[{
 # rings 7, tree 11; bench/spd_sizes.py balls 3–5, rings 5–10, tree 11–14), NFF read directly.
 foreach(scene balls:2 rings:3 tree:8)
   string(REPLACE ":" ";" scene ${scene})
+  list(GET scene 0 name)
+  list(GET scene 1 size)
   execute_process(COMMAND ${python3} ${SOURCE_DIR}/bench/spd_gen.py ${scene} --out ${PGO_DIR}/train
                   OUTPUT_QUIET COMMAND_ERROR_IS_FATAL ANY)
+  file(RENAME ${PGO_DIR}/train/${name}.nff ${PGO_DIR}/train/spd_${name}_${size}.nff)
 endforeach()
 
 # Not demo:whitted (bench/whitted_vs_povray.sh, aa_quality, cost_growth, mpi_scaling,
@@ -62,9 +65,9 @@ set(runs
   "${SOURCE_DIR}/scenes/exploding_glass.json --width 96 --height 72 --max-depth 8 -o glass.png"
   "mesh.json -o mesh.png"
   "mesh.json --pipeline zbuffer --aa adaptive -o mesh_zbuffer.png"
-  "balls.nff --width 128 --height 128 -o balls.png"
-  "rings.nff --width 128 --height 128 -o rings.png"
-  "tree.nff --width 128 --height 128 -o tree.png")
+  "spd_balls_2.nff --width 128 --height 128 -o balls.png"
+  "spd_rings_3.nff --width 128 --height 128 -o rings.png"
+  "spd_tree_8.nff --width 128 --height 128 -o tree.png")
 foreach(run IN LISTS runs)
   separate_arguments(args UNIX_COMMAND "${run}")
   foreach(threads 1 2)
