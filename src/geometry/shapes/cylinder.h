@@ -110,7 +110,7 @@ struct cylinder {
                                       tests);
         return count_by_repeated_hits(
             t_min, t_max, first_only, tests,
-            [&](float t0, float t1, Hit& h) { return intersect_object(s, r, t0, t1, h); });
+            [&](float lo, float hi, Hit& h) { return intersect_object(s, r, lo, hi, h); });
     }
 
     static SurfacePoint surface_at(const Shape& s, const Ray& r, const Hit& hit) {
