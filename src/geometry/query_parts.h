@@ -270,18 +270,26 @@ inline bool add_crossings(const Materials& materials, int material, uint32_t n,
     return true;
 }
 
+/// Records n crossings of shape i (not a mesh), a split one's only at the first piece met;
+/// false if it is opaque and met (n > 0).
+inline bool add_shape_crossings(const BuiltScene& scene, const Materials& materials, uint32_t i,
+                                uint32_t n, Crossings& crossings) {
+    if (n == 0) return true;
+    const Shape& s = scene.shapes[i];
+    if (materials[s.material].transparency <= 0) return false;
+    return (s.split && !crossings.first_meeting(i)) ||  // counted at another piece
+           add_crossings(materials, s.material, n, crossings);
+}
+
 /// Every crossing of shape i (not a mesh) with r in (t_min, t_max); false on an opaque one.
 /// Inlined: it is the inner loop of every shadow ray.
 [[gnu::always_inline]] inline bool cross_shape(const BuiltScene& scene, const Materials& materials,
                                                uint32_t i, const Ray& r, float t_min, float t_max,
                                                Crossings& crossings, IntersectCounters& counters) {
     const Shape& s = scene.shapes[i];
-    const bool opaque = materials[s.material].transparency <= 0;
+    const bool opaque = materials[s.material].transparency <= 0;  // the first crossing will do
     const uint32_t n = count_crossings(s, r, t_min, t_max, opaque, counters.primitive);
-    if (n == 0) return true;
-    if (opaque) return false;
-    return (s.split && !crossings.first_meeting(i)) ||  // counted at another piece
-           add_crossings(materials, s.material, n, crossings);
+    return add_shape_crossings(scene, materials, i, n, crossings);
 }
 
 /// Triangle `tri` of mesh shape i; false if it blocks (opaque).
@@ -307,17 +315,12 @@ inline bool cross_triangle(const BuiltScene& scene, const Materials& materials,
         const int k = __builtin_ctz(hit);  // as crossings_at_roots() counts them
         const uint32_t n = roots_within(test.spheres.t0[k], test.spheres.t1[k], t_min, t_max);
         if (n > 0 && !add_crossings(materials, scene.shapes[b.shape[k]].material, n, crossings))
-            return false;
+            return false;  // (a sphere is never split)
     }
     for (unsigned hit = test.cylinders.hit; hit != 0; hit &= hit - 1) {
-        const int k = __builtin_ctz(hit);  // as cross_shape() counts them
+        const int k = __builtin_ctz(hit);  // counted so, recorded as cross_shape() records them
         const uint32_t n = roots_within(test.cylinders.t0[k], test.cylinders.t1[k], t_min, t_max);
-        if (n == 0) continue;
-        const uint32_t i = b.shape[k];
-        if (scene.shapes[i].split && materials[scene.shapes[i].material].transparency > 0 &&
-            !crossings.first_meeting(i))
-            continue;  // counted at another piece
-        if (!add_crossings(materials, scene.shapes[i].material, n, crossings)) return false;
+        if (!add_shape_crossings(scene, materials, b.shape[k], n, crossings)) return false;
     }
     for (unsigned s = test.one_by_one; s != 0; s &= s - 1) {
         if (!cross_shape(scene, materials, b.shape[__builtin_ctz(s)], r, t_min, t_max, crossings,

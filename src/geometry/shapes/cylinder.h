@@ -18,25 +18,18 @@ struct cylinder {
     static constexpr bool bounded = true;
 
     /// Placement, and the world form (centre: the base; normal: the unit axis; radius; offset:
-    /// the height) of an open cylinder whose transform keeps it round: x and y columns of one
-    /// length, the three columns perpendicular.
+    /// the height) of an open cylinder whose transform keeps it round (is_round_frame()).
     static void place(const ObjectDesc& o, Shape& s) {
         set_transform(s, o, frame_along(o.axis, o.radius, o.radius, o.height, o.base));
         s.caps = o.caps;
         const Affine& M = s.transform.world_from_object;
-        const Vec3 U = column(M, 0), V = column(M, 1), W = column(M, 2);
-        const float uu = dot(U, U), ww = dot(W, W);
-        const float tol = 16.0f * std::numeric_limits<float>::epsilon();
-        const bool round = std::fabs(dot(V, V) - uu) <= tol * uu &&
-                           std::fabs(dot(U, V)) <= tol * uu &&
-                           std::fabs(dot(U, W)) <= tol * std::sqrt(uu * ww) &&
-                           std::fabs(dot(V, W)) <= tol * std::sqrt(uu * ww);
-        if (!s.caps && round && uu > 0 && ww > 0) {
+        if (!s.caps && is_round_frame(M)) {
+            const Vec3 W = column(M, 2);
             s.world_form = true;
             s.centre = origin(M);
-            s.normal = W / std::sqrt(ww);
-            s.radius = std::sqrt(uu);
-            s.offset = std::sqrt(ww);
+            s.normal = normalize(W);
+            s.radius = length(column(M, 0));
+            s.offset = length(W);
         }
     }
 

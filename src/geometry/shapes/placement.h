@@ -1,5 +1,5 @@
 // What the shapes share to place themselves (make_shape) and bound themselves: the columns and
-// rows of a transform, ellipse bounds, float padding, the similarity test, frames.
+// rows of a transform, ellipse bounds, float padding, the similarity and roundness tests, frames.
 #pragma once
 
 #include <algorithm>
@@ -55,6 +55,17 @@ inline bool is_similarity(const Affine& a) {
         if (std::fabs(dot(c[k], c[(k + 1) % 3])) > tol) return false;
     }
     return l2 > 0;
+}
+
+/// Whether the linear part keeps a shape around its z axis round: x and y columns of one length,
+/// the three columns perpendicular (the height along z free).
+inline bool is_round_frame(const Affine& a) {
+    const Vec3 U = column(a, 0), V = column(a, 1), W = column(a, 2);
+    const float uu = dot(U, U), ww = dot(W, W), uw = std::sqrt(uu * ww);
+    const float tol = 16.0f * std::numeric_limits<float>::epsilon();
+    return uu > 0 && ww > 0 && std::fabs(dot(V, V) - uu) <= tol * uu &&
+           std::fabs(dot(U, V)) <= tol * uu && std::fabs(dot(U, W)) <= tol * uw &&
+           std::fabs(dot(V, W)) <= tol * uw;
 }
 
 /// The frame whose z axis is `axis` (normalised), x and y any orthonormal completion, scaled by
