@@ -42,6 +42,19 @@ Keyword keyword_of(std::string_view k) {
     return i == std::string_view::npos ? Keyword::unknown : static_cast<Keyword>(i);
 }
 
+/// How many lines start with `s` or `c` (spheres, cylinders, cones; a few other lines may
+/// too): an estimate of the objects to come.
+std::size_t shape_lines(std::string_view text) {
+    std::size_t n = 0;
+    for (std::size_t at = 0; at < text.size();) {
+        n += text[at] == 's' || text[at] == 'c';
+        const std::size_t end = text.find('\n', at);
+        if (end == std::string_view::npos) break;
+        at = end + 1;
+    }
+    return n;
+}
+
 /// The lines that hold a statement: text from `#` on and blank lines are skipped.
 class Statements {
   public:
@@ -74,7 +87,15 @@ class NffReader {
     NffReader(std::string_view text, const std::string& file, const std::string& base_dir,
               bool direct)
         : statements_(text), file_(file), base_dir_(base_dir) {
-        if (direct) scene_.direct.emplace();
+        if (!direct) return;
+        NffScene::Direct& d = scene_.direct.emplace();
+        // Room for every line that starts with s or c: a vector of objects grown one by one
+        // moves each of them (352 bytes) at every doubling, onto pages the kernel must fault in.
+        const std::size_t n = shape_lines(text);
+        d.objects.reserve(n);
+        d.materials.reserve(n);
+        d.order.reserve(n);
+        scene_.object_lines.reserve(n);
     }
 
     NffScene read() {

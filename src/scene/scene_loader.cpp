@@ -81,7 +81,8 @@ void read_scene(const Json& doc, const std::string& base_dir, MeshCache* meshes_
                     read_object(j->at(m), join("objects", i), materials, base_dir, meshes));
                 continue;
             }
-            ObjectDesc o = direct->objects[static_cast<std::size_t>(k)];
+            ObjectDesc& o =
+                scene.objects.emplace_back(direct->objects[static_cast<std::size_t>(k)]);
             o.path = join("objects", i);
             if (const std::string& name = direct->materials[static_cast<std::size_t>(k)];
                 !name.empty()) {
@@ -89,7 +90,6 @@ void read_scene(const Json& doc, const std::string& base_dir, MeshCache* meshes_
                 if (added) it->second = materials.resolve(Json(name), KeyPath(o.path, "material"));
                 o.material = it->second;
             }
-            scene.objects.push_back(std::move(o));
         }
     } else if (const Json* j = top.get("objects")) {
         if (!j->is_array()) fail("objects", "expected an array of objects, got " + describe(*j));
