@@ -89,8 +89,8 @@ class NffReader {
         : statements_(text), file_(file), base_dir_(base_dir) {
         if (!direct) return;
         NffScene::Direct& d = scene_.direct.emplace();
-        // Room for every line that starts with s or c: a vector of objects grown one by one
-        // moves each of them (352 bytes) at every doubling, onto pages the kernel must fault in.
+        // Room for every line that starts with s or c: vectors grown one by one move their
+        // elements at every doubling, onto pages the kernel must fault in.
         const std::size_t n = shape_lines(text);
         d.objects.reserve(n);
         d.materials.reserve(n);
@@ -404,7 +404,8 @@ class NffReader {
         NffScene::Direct& d = *scene_.direct;
         scene_.object_lines.push_back(at);
         d.order.push_back(std::int64_t(d.objects.size()));
-        d.objects.push_back(shape_object(shape));
+        shape_object(shape);  // checked now: NffNotDirect sends the file to the document
+        d.objects.push_back(shape);
         d.materials.push_back(material_);
     }
 

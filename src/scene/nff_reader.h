@@ -13,7 +13,7 @@
 #include "luz/object_desc.h"
 #include "scene/json_text.h"
 #include "scene/mesh_data.h"
-#include "scene/nff_shapes.h"  // NffNotDirect
+#include "scene/nff_shapes.h"  // NffShape, NffNotDirect
 
 namespace luz::loader {
 
@@ -27,10 +27,11 @@ struct NffScene {
     std::unordered_map<std::string, std::size_t> lines;  ///< key path → its line in the file
     std::vector<std::size_t> object_lines;  ///< the line of key path "objects.N", for each N
 
-    /// Read `direct` (read_nff()): its spheres, cylinders and cones as objects, already
-    /// checked as the JSON reader checks them; `doc`'s objects are then its meshes alone.
+    /// Read `direct` (read_nff()): its spheres, cylinders and cones as statements, already
+    /// checked as the JSON reader checks their objects (shape_object() gives each one's
+    /// ObjectDesc); `doc`'s objects are then its meshes alone.
     struct Direct {
-        std::vector<ObjectDesc> objects;     ///< material and path not yet set
+        std::vector<NffShape> objects;       ///< 56 bytes each, the ObjectDesc 352
         std::vector<std::string> materials;  ///< each one's material name ("": none)
         /// Per object of the file, in order: k ≥ 0 is objects[k], −1 − m the doc's objects[m].
         std::vector<std::int64_t> order;

@@ -81,8 +81,8 @@ void read_scene(const Json& doc, const std::string& base_dir, MeshCache* meshes_
                     read_object(j->at(m), join("objects", i), materials, base_dir, meshes));
                 continue;
             }
-            ObjectDesc& o =
-                scene.objects.emplace_back(direct->objects[static_cast<std::size_t>(k)]);
+            ObjectDesc& o = scene.objects.emplace_back(
+                shape_object(direct->objects[static_cast<std::size_t>(k)]));
             o.path = join("objects", i);
             if (const std::string& name = direct->materials[static_cast<std::size_t>(k)];
                 !name.empty()) {
