@@ -3,7 +3,7 @@
 // the ray tree spawns from their hits (spawn_ray, bounce, to every light in front), collected
 // once, then timed through nearest_hit()/transmittance() and rtcIntersect1/rtcOccluded1, the two
 // passes alternating (--reps pairs): rates from each one's best pass, the ratio the median of
-// the pairs' ratios.
+// the pairs' ratios, over all rays and for the nearest-hit and the shadow rays apart.
 // Embree holds mesh triangles as triangles and every other bounded shape as user geometry whose
 // callbacks run luz's own exact test (the structures compared, not the primitive tests). A shadow
 // ray asks both the same question, the transmittance along it (SPEC's vis_j): an opaque surface
@@ -259,8 +259,8 @@ int main(int argc, char** argv) {
     RTCDevice device = rtcNewDevice("threads=1");
     std::printf(
         "| scene | rays (camera / reflected / refracted / shadow) | luz Mrays/s | Embree "
-        "Mrays/s | luz / Embree | hits differing | shadow transmittances differing "
-        "|\n|---|---|---|---|---|---|---|\n");
+        "Mrays/s | luz / Embree | nearest / shadow | hits differing | shadow transmittances "
+        "differing |\n|---|---|---|---|---|---|---|---|\n");
     for (const std::string& file : files) {
         SceneDesc d = load_scene(file);
         d.render.pipeline = Pipeline::raytrace;
@@ -274,35 +274,52 @@ int main(int argc, char** argv) {
         const double total = double(nearest.size() + rays.shadow.size());
         IntersectCounters counters;
         volatile float sink = 0;
+        // Each pass times its nearest-hit queries and its shadow rays apart (part[0], part[1]).
+        double part[2];
         const auto luz_pass = [&] {
-            Hit h;
-            for (const Ray& r : nearest)
-                sink = sink + (nearest_hit(scene, r, 0, kInf, h, counters) ? h.t : 0);
-            for (const Segment& s : rays.shadow)
-                sink = sink + transmittance(scene, d.materials, s.ray, 0, s.t_max, counters);
+            part[0] = seconds_of([&] {
+                Hit h;
+                for (const Ray& r : nearest)
+                    sink = sink + (nearest_hit(scene, r, 0, kInf, h, counters) ? h.t : 0);
+            });
+            part[1] = seconds_of([&] {
+                for (const Segment& s : rays.shadow)
+                    sink = sink + transmittance(scene, d.materials, s.ray, 0, s.t_max, counters);
+            });
         };
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         const auto embree_pass = [&] {
-            for (const Ray& r : nearest) {
-                RTCRayHit rh = embree_ray(r, kInf);
-                rtcIntersect1(es, &ctx, &rh);
-                sink = sink + rh.ray.tfar;
-            }
-            for (const Segment& s : rays.shadow) sink = sink + embree_transmittance(es, ctx, s);
+            part[0] = seconds_of([&] {
+                for (const Ray& r : nearest) {
+                    RTCRayHit rh = embree_ray(r, kInf);
+                    rtcIntersect1(es, &ctx, &rh);
+                    sink = sink + rh.ray.tfar;
+                }
+            });
+            part[1] = seconds_of([&] {
+                for (const Segment& s : rays.shadow) sink = sink + embree_transmittance(es, ctx, s);
+            });
         };
         // The two passes alternate, luz first then Embree first, so that the machine's drift
         // falls on both alike: the ratio is the median of each pair's, the rates the best pass.
-        std::vector<double> luz_t, embree_t, ratio;
+        std::vector<double> luz_t, embree_t, ratio, ratio_part[2];
+        double luz_part[2], embree_part[2];
+        const auto run = [&](const auto& pass, std::vector<double>& t, double* parts) {
+            t.push_back(seconds_of(pass));
+            parts[0] = part[0];
+            parts[1] = part[1];
+        };
         for (int k = 0; k < reps; ++k) {
             if (k % 2 == 0) {
-                luz_t.push_back(seconds_of(luz_pass));
-                embree_t.push_back(seconds_of(embree_pass));
+                run(luz_pass, luz_t, luz_part);
+                run(embree_pass, embree_t, embree_part);
             } else {
-                embree_t.push_back(seconds_of(embree_pass));
-                luz_t.push_back(seconds_of(luz_pass));
+                run(embree_pass, embree_t, embree_part);
+                run(luz_pass, luz_t, luz_part);
             }
             ratio.push_back(embree_t.back() / luz_t.back());
+            for (int p = 0; p < 2; ++p) ratio_part[p].push_back(embree_part[p] / luz_part[p]);
         }
         const double luz_s = *std::min_element(luz_t.begin(), luz_t.end());
         const double embree_s = *std::min_element(embree_t.begin(), embree_t.end());
@@ -320,10 +337,12 @@ int main(int argc, char** argv) {
             const float T = transmittance(scene, d.materials, s.ray, 0, s.t_max, counters);
             if (std::fabs(T - embree_transmittance(es, ctx, s)) > 1e-5f) ++differ_T;
         }
-        std::printf("| %s | %zu / %zu / %zu / %zu | %.2f | %.2f | %.2f× | %zu | %zu |\n",
-                    file.c_str(), rays.camera.size(), rays.reflected.size(), rays.refracted.size(),
-                    rays.shadow.size(), total / luz_s * 1e-6, total / embree_s * 1e-6,
-                    median(ratio), differ, differ_T);
+        std::printf(
+            "| %s | %zu / %zu / %zu / %zu | %.2f | %.2f | %.2f× | %.2f× / %.2f× | %zu | %zu |\n",
+            file.c_str(), rays.camera.size(), rays.reflected.size(), rays.refracted.size(),
+            rays.shadow.size(), total / luz_s * 1e-6, total / embree_s * 1e-6, median(ratio),
+            median(ratio_part[0]), rays.shadow.empty() ? 0.0 : median(ratio_part[1]), differ,
+            differ_T);
         std::fflush(stdout);
         rtcReleaseScene(es);
     }
