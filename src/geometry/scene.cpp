@@ -126,6 +126,7 @@ BuiltScene build_scene(const SceneDesc& desc, bool with_bvh) {
     scene.geometry = desc.geometry;
     scene.material_count = desc.materials.size();
     scene.shapes.reserve(desc.objects.size());
+    scene.bounds.reserve(desc.objects.size());
     for (size_t i = 0; i < desc.objects.size(); ++i) {
         check_cancel();
         scene.shapes.push_back(make_shape(desc.objects[i], static_cast<int>(i)));
