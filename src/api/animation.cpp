@@ -8,7 +8,8 @@
 #include <filesystem>
 
 #include "api/stats_json.h"
-#include "render/stats.h"  // add_counters()
+#include "render/parallel.h"  // start_workers()
+#include "render/stats.h"     // add_counters()
 #include "scene/scene_loader.h"
 
 namespace luz {
@@ -18,6 +19,7 @@ struct Animation::Meshes {
 };
 
 Animation Animation::load(const std::string& source, const std::vector<Override>& overrides) {
+    start_workers();  // the threads that will build the BVH and render start meanwhile
     Animation a;
     a.text_ = read_scene_text(source);
     a.overrides_ = overrides;
