@@ -90,8 +90,9 @@ class NffReader {
         if (!direct) return;
         NffScene::Direct& d = scene_.direct.emplace();
         // Room for every line that starts with s or c: vectors grown one by one move their
-        // elements at every doubling, onto pages the kernel must fault in.
-        const std::size_t n = shape_lines(text);
+        // elements at every doubling, onto pages the kernel must fault in. At most a million
+        // up front (~100 MB): beyond, they grow as the file proves it holds more.
+        const std::size_t n = std::min<std::size_t>(shape_lines(text), 1 << 20);
         d.objects.reserve(n);
         d.materials.reserve(n);
         d.order.reserve(n);
