@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Two luz binaries side by side on SPD scenes: whole-process wall time of `luz render NAME.nff`,
 runs alternating (A, B, then B, A, ...) so that the machine's drift hits both alike; prints each
-scene's median times and the median of the pairs' A/B ratios (> 1: B is faster).
+scene's median times and the median of the pairs' A/B ratios (> 1: B is faster). With
+--size 8 it times the start-up (reading the scene, building the BVH), in milliseconds.
 
 usage: bench/spd_ab.py [--size 2048] [--runs 7] [--threads 2] [--spd scenes/spd] A_LUZ B_LUZ NAME...
 """
@@ -46,7 +47,11 @@ def main():
                 ta.append(a)
                 tb.append(b)
                 ratios.append(a / b)
-            print(f"{name}: A {statistics.median(ta):.3f} s, B {statistics.median(tb):.3f} s, "
+            # milliseconds to a tenth for small sizes (start-up: --size 8), else seconds
+            ma, mb = statistics.median(ta), statistics.median(tb)
+            unit, f = ("ms", 1e3) if max(ma, mb) < 0.1 else ("s", 1.0)
+            print(f"{name}: A {ma * f:.{1 if unit == 'ms' else 3}f} {unit}, "
+                  f"B {mb * f:.{1 if unit == 'ms' else 3}f} {unit}, "
                   f"A/B {statistics.median(ratios):.3f} (median of {args.runs} pairs)", flush=True)
 
 
