@@ -17,6 +17,7 @@
 #include "scene/cancel.h"
 #include "scene/message_text.h"
 #include "scene/nff_shapes.h"
+#include "scene/nff_statements.h"
 #include "scene/number_text.h"
 #include "scene/obj_text.h"
 #include "scene/triangulate.h"
@@ -24,56 +25,16 @@
 namespace luz::loader {
 namespace {
 
+using nff_text::Keyword;
+using nff_text::keyword_of;
+using nff_text::shape_lines;
+using nff_text::Statements;
 using obj_text::fail_at;
-using obj_text::Lines;
 using obj_text::read_numbers;
 using obj_text::Tokens;
 
 /// Most vertices one polygon may announce (far beyond any SPD polygon).
 constexpr double kMaxPolygonVertices = 1e8;
-
-/// NFF's statements, by keyword.
-enum class Keyword { v, b, l, f, s, c, p, pp, unknown };
-
-Keyword keyword_of(std::string_view k) {
-    constexpr std::string_view kOneLetter = "vblfscp";  // in the order of Keyword
-    if (k == "pp") return Keyword::pp;
-    const std::size_t i = k.size() == 1 ? kOneLetter.find(k[0]) : std::string_view::npos;
-    return i == std::string_view::npos ? Keyword::unknown : static_cast<Keyword>(i);
-}
-
-/// How many lines start with `s` or `c` (spheres, cylinders, cones; a few other lines may
-/// too): an estimate of the objects to come.
-std::size_t shape_lines(std::string_view text) {
-    std::size_t n = 0;
-    for (std::size_t at = 0; at < text.size();) {
-        n += text[at] == 's' || text[at] == 'c';
-        const std::size_t end = text.find('\n', at);
-        if (end == std::string_view::npos) break;
-        at = end + 1;
-    }
-    return n;
-}
-
-/// The lines that hold a statement: text from `#` on and blank lines are skipped.
-class Statements {
-  public:
-    explicit Statements(std::string_view text) : lines_(obj_text::without_bom(text)) {}
-
-    bool next(std::string_view& line) {
-        while (lines_.next(line)) {
-            if (const std::size_t hash = line.find('#'); hash != std::string_view::npos) {
-                line = line.substr(0, hash);
-            }
-            if (!Tokens(line).rest().empty()) return true;
-        }
-        return false;
-    }
-    std::size_t line() const { return lines_.number(); }
-
-  private:
-    Lines lines_;
-};
 
 /// The polygons of one material, as one mesh.
 struct PolygonMesh {

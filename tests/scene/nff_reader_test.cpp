@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "scene/nff_statements.h"
 #include "scene/scene_loader.h"
 #include "scene/scene_writer.h"
 
@@ -397,3 +398,14 @@ TEST(NffReader, AnOverrideIsBlamedForWhatItPutThere) {
 
 }  // namespace
 }  // namespace luz
+
+TEST(NffStatements, ShapeLinesCountTheLinesStartingWithSOrC) {
+    using luz::loader::nff_text::shape_lines;
+    EXPECT_EQ(shape_lines(""), 0u);
+    EXPECT_EQ(shape_lines("s 0 0 0 1"), 1u);  // a last line without a newline counts
+    // the reader's estimate of its objects: s and c lines, not v, p, f, comments or blank lines
+    EXPECT_EQ(shape_lines("v\nfrom 0 0 1\ns 0 0 0 1\n# s\n\nc\n0 0 0 1\n1 1 1 1\n"
+                          "p 3\n0 0 0\n1 0 0\n0 1 0\ns 1 1 1 1\n"),
+              3u);
+    EXPECT_EQ(shape_lines("s 0 0 0 1\r\nc\r\n"), 2u);
+}
