@@ -10,6 +10,7 @@
 // ends it, a transparent one multiplies its transparency and lets it go on — in Embree an
 // occlusion filter that rejects such hits (triangles) and an occlusion callback that counts a
 // transparent shape's crossings (user geometry), as a renderer on Embree would do it.
+// --robust: Embree's watertight triangle test (RTC_SCENE_FLAG_ROBUST), as luz's always is.
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -148,8 +149,9 @@ void transparent_triangles(const RTCFilterFunctionNArguments* a) {
     g_transmittance *= T;
 }
 
-RTCScene embree_scene(RTCDevice device, const BuiltScene& scene) {
+RTCScene embree_scene(RTCDevice device, const BuiltScene& scene, bool robust) {
     RTCScene es = rtcNewScene(device);
+    rtcSetSceneFlags(es, robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
     g_scene = &scene;
     g_user_shapes.clear();
     for (size_t i = 0; i < scene.shapes.size(); ++i) {
@@ -242,6 +244,7 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
     int size = 256, reps = 3;
+    bool robust = false;  // Embree's watertight triangle test (RTC_SCENE_FLAG_ROBUST), as luz's
     std::vector<std::string> files;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -249,8 +252,10 @@ int main(int argc, char** argv) {
             size = std::atoi(argv[++i]);
         } else if (a == "--reps" && i + 1 < argc) {
             reps = std::atoi(argv[++i]);
+        } else if (a == "--robust") {
+            robust = true;
         } else if (a == "-h" || a == "--help") {
-            std::printf("usage: spd_vs_embree [--size N] [--reps N] SCENE…\n");
+            std::printf("usage: spd_vs_embree [--size N] [--reps N] [--robust] SCENE…\n");
             return 0;
         } else {
             files.push_back(a);
@@ -267,7 +272,7 @@ int main(int argc, char** argv) {
         const BuiltScene scene = build_scene(d);
         const SceneRays rays = collect_rays(d, scene, size);
         g_materials = &d.materials;
-        RTCScene es = embree_scene(device, scene);
+        RTCScene es = embree_scene(device, scene, robust);
         std::vector<Ray> nearest = rays.camera;
         nearest.insert(nearest.end(), rays.reflected.begin(), rays.reflected.end());
         nearest.insert(nearest.end(), rays.refracted.begin(), rays.refracted.end());

@@ -48,11 +48,17 @@ void edges_in_double(float Ax, float Ay, float Bx, float By, float Cx, float Cy,
     w.origin = r.origin;
     const float ax = std::fabs(r.direction.x), ay = std::fabs(r.direction.y),
                 az = std::fabs(r.direction.z);
-    w.kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
-    w.kx = w.kz == 2 ? 0 : w.kz + 1;
-    w.ky = w.kx == 2 ? 0 : w.kx + 1;
+    // kz: x if it beats y and z, else y if it beats z, else z; kx, ky the next two in turn,
+    // swapped when d_z < 0 (keeps the winding's sign). In arithmetic: incoherent rays would
+    // mispredict branches here.
+    const int xy = ax > ay, xz = ax > az, yz = ay > az;
+    w.kz = (1 - (xy & xz)) * (2 - ((1 - xy) & yz));
+    const int next = w.kz == 2 ? 0 : w.kz + 1;
+    const int after = next == 2 ? 0 : next + 1;
     const float dz = at(r.direction, w.kz);
-    if (dz < 0) std::swap(w.kx, w.ky);  // keeps the winding's sign
+    const int flip = -static_cast<int>(dz < 0);  // all ones when d_z < 0
+    w.kx = next ^ ((next ^ after) & flip);
+    w.ky = after ^ ((next ^ after) & flip);
     w.Sz = 1.0f / dz;
     w.Sx = at(r.direction, w.kx) * w.Sz;
     w.Sy = at(r.direction, w.ky) * w.Sz;
