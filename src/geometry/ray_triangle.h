@@ -52,7 +52,7 @@ void edges_in_double(float Ax, float Ay, float Bx, float By, float Cx, float Cy,
     // swapped when d_z < 0 (keeps the winding's sign). In arithmetic: incoherent rays would
     // mispredict branches here.
     const int xy = ax > ay, xz = ax > az, yz = ay > az;
-    w.kz = (1 - (xy & xz)) * (2 - ((1 - xy) & yz));
+    w.kz = (1 - (xy & xz)) * (2 - yz);  // (x beating y and z with y beating z gives 0 anyway)
     const int next = w.kz == 2 ? 0 : w.kz + 1;
     const int after = next == 2 ? 0 : next + 1;
     const float dz = at(r.direction, w.kz);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/ray_triangle.h"
 #include "geometry/shapes.h"
 #include "intersect_fixtures.h"
 
@@ -68,6 +69,34 @@ TEST(Intersect, RaysThroughASharedEdgeOrVertexNeverSlipThrough) {
         }
         EXPECT_EQ(missed, 0);
     }
+}
+
+// prepare_watertight() chooses its axes by arithmetic: the same as the branches it replaced on
+// every direction, ties between components, −0, NaN and d_z < 0 (the swap) included.
+TEST(Intersect, WatertightRayAxesAreThoseOfTheDominantComponentRule) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float values[] = {0.0f, -0.0f, 0.5f, -0.5f, 1.0f, -1.0f, 2.0f, -2.0f, nan};
+    int checked = 0;
+    for (float x : values) {
+        for (float y : values) {
+            for (float z : values) {
+                const Ray r{{1.0f, 2.0f, 3.0f}, {x, y, z}};
+                const float d[3] = {x, y, z};
+                const float ax = std::fabs(x), ay = std::fabs(y), az = std::fabs(z);
+                const int kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+                int kx = kz == 2 ? 0 : kz + 1;
+                int ky = kx == 2 ? 0 : kx + 1;
+                if (d[kz] < 0) std::swap(kx, ky);
+                const WatertightRay w = prepare_watertight(r);
+                SCOPED_TRACE(std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z));
+                EXPECT_EQ(w.kz, kz);
+                EXPECT_EQ(w.kx, kx);
+                EXPECT_EQ(w.ky, ky);
+                ++checked;
+            }
+        }
+    }
+    EXPECT_EQ(checked, 9 * 9 * 9);
 }
 
 }  // namespace
