@@ -35,7 +35,8 @@ std::unique_ptr<Subtree> Builder::build_task(size_t begin, size_t end, const Box
         return sub;
     }
     Box child[4];
-    const size_t mid = split(begin, end, depth, box, cbox, child, *scratch);
+    size_t mid = split(begin, end, depth, box, cbox, child, *scratch);
+    if (mid == begin) mid = split_kinds(begin, end, child);
     sub->root = make_node(box);
     if (mid == begin) return leaf();
     tbb::parallel_invoke([&] { sub->left = build_task(begin, mid, child[0], child[1], depth + 1); },
@@ -66,8 +67,8 @@ uint32_t Builder::build_serial(FlatNodes& nodes, size_t begin, size_t end, const
                                const Box& cbox, int depth, Bins& scratch) {
     const uint32_t index = nodes.push(make_node(box));
     Box child[4];  // box and cbox of the first and the second child
-    const size_t mid =
-        end - begin > 1 ? split(begin, end, depth, box, cbox, child, scratch) : begin;
+    size_t mid = end - begin > 1 ? split(begin, end, depth, box, cbox, child, scratch) : begin;
+    if (mid == begin) mid = split_kinds(begin, end, child);
     if (mid == begin) {
         nodes.at[index].offset = static_cast<uint32_t>(begin);
         nodes.at[index].count = static_cast<uint32_t>(end - begin);

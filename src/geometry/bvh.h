@@ -38,6 +38,9 @@ struct BvhOptions {
     float traversal_cost = 1.0f;
     uint32_t max_leaf_size = 8;
     uint32_t leaf_block = 1;
+    /// When not empty, kinds[i] is primitive i's kind, and a leaf holds one kind only: a node
+    /// the SAH would make a leaf of several kinds is split by kind, the least kind first.
+    std::span<const uint8_t> kinds;
 };
 
 class Bvh {

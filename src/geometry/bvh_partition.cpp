@@ -98,4 +98,21 @@ size_t Builder::median(size_t begin, size_t end, int axis, Box* child) {
     return mid;
 }
 
+size_t Builder::split_kinds(size_t begin, size_t end, Box* child) {
+    const std::span<const uint8_t> kinds = options_.kinds;
+    if (kinds.empty()) return begin;
+    uint8_t least = kinds[refs_[begin].id()], most = least;
+    for (size_t i = begin + 1; i < end; ++i) {
+        least = std::min(least, kinds[refs_[i].id()]);
+        most = std::max(most, kinds[refs_[i].id()]);
+    }
+    if (least == most) return begin;
+    const auto mid = std::stable_partition(refs_.begin() + begin, refs_.begin() + end,
+                                           [&](const Ref& r) { return kinds[r.id()] == least; });
+    const size_t m = static_cast<size_t>(mid - refs_.begin());
+    bounds_of(begin, m, child[0], child[1]);
+    bounds_of(m, end, child[2], child[3]);
+    return m;
+}
+
 }  // namespace luz::bvh_build

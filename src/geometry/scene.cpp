@@ -193,6 +193,13 @@ void build_bvh(BuiltScene& scene) {
     options.leaf_block = PrimBlock::kLanes;
     options.traversal_cost = kBlockTraversalCost;
     options.max_leaf_size = kBlockMaxLeaf;
+    // Mesh triangles and other shapes in leaves of their own: a ground polygon's leaf then has
+    // a flat box, which the shadow rays leaving the ground (their origins lifted off it) miss,
+    // instead of a box raised by a shape beside it that every such ray enters and tests.
+    std::vector<uint8_t> kinds(prims.size());
+    for (size_t p = 0; p < prims.size(); ++p)
+        kinds[p] = prims[p].triangle == BvhPrim::kNotTriangle ? 1 : 0;
+    options.kinds = kinds;
     // Primitives that fit one leaf stay in one: the queries test it without any node
     // (BuiltScene::root_leaf), a saving the SAH, which prices the visits below the root, misses.
     if (prims.size() <= kBlockMaxLeaf)

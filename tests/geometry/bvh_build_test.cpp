@@ -31,10 +31,11 @@ std::vector<Bounds3> clustered_boxes(int n) {
     return boxes;
 }
 
-Bvh build_with_threads(int threads, const std::vector<Bounds3>& boxes) {
+Bvh build_with_threads(int threads, const std::vector<Bounds3>& boxes,
+                       const BvhOptions& options = {}) {
     Bvh bvh;
     tbb::task_arena arena(threads);
-    arena.execute([&] { bvh = Bvh::build(boxes); });
+    arena.execute([&] { bvh = Bvh::build(boxes, options); });
     return bvh;
 }
 
@@ -109,6 +110,46 @@ TEST(BvhBuild, LargeNodeOfCoincidentCentroidsIsOneLeaf) {
         for (uint32_t id : bvh.order()) ++seen.at(id);
         for (size_t id = 0; id < boxes.size(); ++id) ASSERT_EQ(seen[id], 1) << id;
     }
+}
+
+// With kinds, no leaf holds two: a node the SAH would make a leaf of several is split by kind
+// (the least first), down to one leaf per kind where every centroid coincides; the tree is
+// still the same for any thread count.
+TEST(BvhBuild, LeavesHoldOneKindEach) {
+    const std::vector<Bounds3> boxes = clustered_boxes(30000);
+    std::vector<uint8_t> kinds(boxes.size());
+    for (size_t i = 0; i < kinds.size(); ++i) kinds[i] = static_cast<uint8_t>(i * 7 % 3);
+    BvhOptions options;
+    options.kinds = kinds;
+    const Bvh one = build_with_threads(1, boxes, options);
+    int mixed_without = 0;
+    const Bvh plain = build_with_threads(1, boxes);
+    for (const BvhNode& n : plain.nodes())
+        for (uint32_t i = n.offset + 1; n.leaf() && i < n.offset + n.count; ++i)
+            mixed_without += kinds[plain.order()[i]] != kinds[plain.order()[n.offset]];
+    EXPECT_GT(mixed_without, 100);  // the case arises without kinds
+    std::vector<int> seen(boxes.size(), 0);
+    for (const BvhNode& n : one.nodes()) {
+        if (!n.leaf()) continue;
+        for (uint32_t i = n.offset; i < n.offset + n.count; ++i) {
+            ++seen[one.order()[i]];
+            ASSERT_EQ(kinds[one.order()[i]], kinds[one.order()[n.offset]]) << i;
+        }
+    }
+    for (int s : seen) ASSERT_EQ(s, 1);
+    for (int threads : {2, 4})
+        EXPECT_TRUE(same_tree(one, build_with_threads(threads, boxes, options)));
+
+    const std::vector<Bounds3> same(5000, Bounds3{{1, 2, 3}, {2, 3, 4}});
+    std::vector<uint8_t> two(same.size());
+    for (size_t i = 0; i < two.size(); ++i) two[i] = static_cast<uint8_t>(1 + i % 2);
+    options.kinds = two;
+    const Bvh split = build_with_threads(2, same, options);
+    ASSERT_EQ(split.nodes().size(), 3u);  // a root and one leaf per kind, the least first
+    EXPECT_EQ(split.nodes()[1].count, 2500u);
+    EXPECT_EQ(split.nodes()[2].count, 2500u);
+    EXPECT_EQ(two[split.order()[split.nodes()[1].offset]], 1);
+    EXPECT_EQ(two[split.order()[split.nodes()[2].offset]], 2);
 }
 
 }  // namespace

@@ -129,5 +129,46 @@ TEST(ShadowBatch, ACachedBlockOfGlassAndStoneCountsItsGlassOnce) {
     for (int k = 0; k < kMaxPacket; ++k) EXPECT_EQ(T[k], glass) << k;
 }
 
+// A ground quad with spheres standing on it, as tree.nff's ground and tree: mesh triangles and
+// other shapes keep leaves of their own, so the ground's leaf has a flat box, which segments
+// leaving the ground (lifted off it, as the ray tracer lifts them) miss. They reach the light
+// with no primitive test, one by one and as packets; sharing a leaf with a sphere, the ground
+// cost every one of them a test of its triangles and of the sphere (issue 39).
+TEST(ShadowBatch, SegmentsLeavingAGroundQuadTestNothingThere) {
+    std::vector<ObjectDesc> objects = {test::mesh_object(
+        {{-50, -50, 0}, {50, -50, 0}, {50, 50, 0}, {-50, 50, 0}}, {0, 1, 2, 0, 2, 3}, 0)};
+    Rng rng{4};
+    for (int i = 0; i < 40; ++i) {  // near its centre, some sunk into it to their centres
+        const float r = 0.05f + 0.3f * static_cast<float>(i % 5) / 4.0f;
+        const Vec3 c = random_point(rng, -1, 1);
+        objects.push_back(sphere({c.x, c.y, (r + 1.0f) * static_cast<float>(i % 3)}, r, 0));
+    }
+    const SceneDesc desc = scene_with(objects);
+    const BuiltScene scene = build_scene(desc);
+    ASSERT_EQ(scene.root_leaf, 0u);
+    const Vec3 light{0, 0, 100};
+    IntersectCounters counters;
+    for (int call = 0; call < 200; ++call) {
+        const Vec3 centre = random_point(rng, 10, 40) * Vec3{call % 2 ? 1.0f : -1.0f, 1, 0};
+        SegmentLanes s = towards(rng, light, centre, 0.5f);
+        for (int k = 0; k < kMaxPacket; ++k) {  // on the ground, lifted by kRayEpsilon
+            s.oz[k] = 1e-4f;
+            s.t_max[k] = length(light - s.ray(k).origin);
+            const Vec3 L = (light - s.ray(k).origin) / s.t_max[k];
+            s.dx[k] = L.x, s.dy[k] = L.y, s.dz[k] = L.z;
+        }
+        float T[kMaxPacket];
+        ShadowCache cache;
+        transmittances(scene, desc.materials, s, 0xFFu, T, counters, &cache, true);
+        for (int k = 0; k < kMaxPacket; ++k) {
+            EXPECT_EQ(T[k], 1.0f);
+            EXPECT_EQ(transmittance(scene, desc.materials, s.ray(k), 0.0f, s.t_max[k], counters),
+                      1.0f);
+        }
+    }
+    EXPECT_GT(counters.shadow_packets, 0u);
+    EXPECT_EQ(counters.primitive, 0u);
+}
+
 }  // namespace
 }  // namespace luz
