@@ -10,10 +10,10 @@ bool nearest_hit_bvh(const BuiltScene& scene, const Ray& r, float t_min, float t
                      IntersectCounters& counters) {
     Best best(t_max);
     offer_unbounded(scene, r, t_min, best, counters);
-    const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
+    LazyWatertight w;
     const auto leaf = [&](uint32_t first, uint32_t count) {
         for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned lanes) {
-            offer_block(scene, b, lanes, r, w, t_min, best, counters);
+            offer_block(scene, b, lanes, r, w.for_block(r, b, lanes), t_min, best, counters);
             return true;
         });
     };
@@ -37,19 +37,21 @@ float transmittance_bvh(const BuiltScene& scene, const Materials& materials, con
     for (uint32_t i : scene.unbounded) {
         if (!cross_shape(scene, materials, i, r, t_min, t_max, crossings, counters)) return 0.0f;
     }
-    const WatertightRay w = scene.mesh_triangles ? prepare_watertight(r) : WatertightRay{};
+    LazyWatertight w;
     if (cache != nullptr && cache->lanes != 0) {
         // The last occluder first: if it blocks, so would the traversal's find; its transparent
         // crossings (the other lanes') are the traversal's to count, hence counted apart.
         Crossings apart;
-        if (!cross_block(scene, materials, scene.bvh_blocks[cache->block], cache->lanes, r, w,
+        const PrimBlock& b = scene.bvh_blocks[cache->block];
+        if (!cross_block(scene, materials, b, cache->lanes, r, w.for_block(r, b, cache->lanes),
                          t_min, t_max, apart, counters))
             return 0.0f;
     }
     // whether the leaf of slots first … first + count − 1 blocks r
     const auto blocks = [&](uint32_t first, uint32_t count) {
         return !for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned lanes) {
-            if (cross_block(scene, materials, b, lanes, r, w, t_min, t_max, crossings, counters))
+            if (cross_block(scene, materials, b, lanes, r, w.for_block(r, b, lanes), t_min, t_max,
+                            crossings, counters))
                 return true;
             if (cache != nullptr) {
                 cache->block = static_cast<uint32_t>(&b - scene.bvh_blocks.data());

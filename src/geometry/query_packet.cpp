@@ -171,7 +171,7 @@ void transmittances_bvh(const BuiltScene& scene, const Materials& materials, con
                         unsigned active, float* T, IntersectCounters& counters,
                         ShadowCache& cache) {
     Ray r[kPacketLanes];
-    WatertightRay w[kPacketLanes];
+    LazyWatertight w[kPacketLanes];
     Crossings crossings[kPacketLanes];
     for (int k = 0; k < kPacketLanes; ++k) r[k] = s.ray(k);  // (lanes not active: never read)
     // As transmittance_bvh(), each segment first against the unbounded shapes.
@@ -189,9 +189,6 @@ void transmittances_bvh(const BuiltScene& scene, const Materials& materials, con
         if (!crosses_unbounded()) continue;
         open |= 1u << k;
     }
-    // Each segment prepared for the watertight test when it first meets a block of triangles:
-    // most shadow rays of a scene of shapes on a ground polygon never do.
-    unsigned prepared = 0;
     // The segments `lanes` against the leaf of slots first … first + count − 1: those it blocks
     // (the cache then holds the block that blocked the last of them).
     const auto leaf = [&](uint32_t first, uint32_t count, unsigned lanes) {
@@ -199,12 +196,8 @@ void transmittances_bvh(const BuiltScene& scene, const Materials& materials, con
         for (; lanes != 0; lanes &= lanes - 1) {
             const int k = __builtin_ctz(lanes);
             for_each_block(scene, first, count, [&](const PrimBlock& b, unsigned l) {
-                if ((prepared >> k & 1u) == 0 && (b.triangle_lanes() & l) != 0) {
-                    w[k] = prepare_watertight(r[k]);
-                    prepared |= 1u << k;
-                }
-                if (cross_block(scene, materials, b, l, r[k], w[k], 0.0f, s.t_max[k], crossings[k],
-                                counters))
+                if (cross_block(scene, materials, b, l, r[k], w[k].for_block(r[k], b, l), 0.0f,
+                                s.t_max[k], crossings[k], counters))
                     return true;
                 cache.block = static_cast<uint32_t>(&b - scene.bvh_blocks.data());
                 cache.lanes = l;

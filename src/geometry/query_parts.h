@@ -156,6 +156,22 @@ template <class Visit>
     }
 }
 
+/// Ray r prepared for the watertight test when a block with triangles first needs it: most rays
+/// of shapes on a ground polygon (balls, rings, tree) never meet a triangle (mesh triangles have
+/// leaves of their own, scene.cpp), and a mesh's rays pay one test of a bit per block.
+struct LazyWatertight {
+    WatertightRay w;
+    bool ready = false;
+
+    const WatertightRay& for_block(const Ray& r, const PrimBlock& b, unsigned lanes) {
+        if (!ready && (b.triangle_lanes() & lanes) != 0) {
+            w = prepare_watertight(r);
+            ready = true;
+        }
+        return w;
+    }
+};
+
 /// The shape lanes `shapes` of BVH block b against r, by Best. Out of line: a mesh's blocks
 /// hold none, and their loop stays as small as it was.
 [[gnu::noinline]] inline void offer_block_shapes(const BuiltScene& scene, const PrimBlock& b,
