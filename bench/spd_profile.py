@@ -5,6 +5,7 @@
 import argparse
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -72,6 +73,14 @@ def main():
     a = ap.parse_args()
     work = a.keep or tempfile.mkdtemp(prefix="luz_spdprof.")
     os.makedirs(work, exist_ok=True)
+    try:
+        report(a, work)
+    finally:
+        if not a.keep:  # the callgrind files, unless asked to keep them
+            shutil.rmtree(work, ignore_errors=True)
+
+
+def report(a, work):
     for scene in a.scenes:
         name = os.path.splitext(os.path.basename(scene))[0]
         total, funcs = profile(a.luz, scene, a.size, os.path.join(work, f"{name}.{a.size}.cg"))
