@@ -8,6 +8,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include <memory>
+#include <stdexcept>
 
 #include "geometry/bvh_builder.h"
 
@@ -88,6 +89,8 @@ namespace luz {
 using namespace bvh_build;
 
 Bvh Bvh::build(std::span<const Bounds3> bounds, const BvhOptions& options) {
+    if (!options.kinds.empty() && options.kinds.size() != bounds.size())
+        throw std::invalid_argument("Bvh::build: one kind per primitive");
     Bvh bvh;
     Refs refs;
     refs.reserve(bounds.size());

@@ -38,8 +38,9 @@ struct BvhOptions {
     float traversal_cost = 1.0f;
     uint32_t max_leaf_size = 8;
     uint32_t leaf_block = 1;
-    /// When not empty, kinds[i] is primitive i's kind, and a leaf holds one kind only: a node
-    /// the SAH would make a leaf of several kinds is split by kind, the least kind first.
+    /// When not empty (then one per primitive), kinds[i] is primitive i's kind, and a leaf holds
+    /// one kind only: a node the SAH would make a leaf of several kinds is split by kind, those
+    /// up to the middle of its kinds' range first (two kinds: one level; at most 8 for 256).
     std::span<const uint8_t> kinds;
 };
 
@@ -47,7 +48,9 @@ class Bvh {
   public:
     /// Builds over primitives 0 … bounds.size()−1. Primitives with empty bounds cannot be hit
     /// and are left out. Split by binned SAH over the centroids on all three axes; a node whose
-    /// centroids all coincide becomes a leaf; beyond depth 48 nodes split at the median.
+    /// centroids all coincide becomes a leaf (one per kind, with kinds); beyond depth 48 nodes
+    /// split at the median. Throws std::invalid_argument if kinds is neither empty nor of
+    /// bounds' size.
     static Bvh build(std::span<const Bounds3> bounds, const BvhOptions& options = {});
 
     bool empty() const { return nodes_.empty(); }

@@ -59,7 +59,7 @@ struct alignas(16) Ref {
 using Refs = HugeVector<Ref>;
 
 constexpr int kMaxBins = 64;
-constexpr int kMedianDepth = 48;  // deeper nodes split at the median: depth < 48 + 32 (+1 by kind)
+constexpr int kMedianDepth = 48;  // deeper nodes split at the median: depth < 48 + 32 (+8 by kind)
 constexpr size_t kSerialBelow = 1024;   // smaller subtrees are built by one task (2+ threads)
 constexpr size_t kSerialBelow1 = 4096;  // the same on one thread (fewer tasks, less copying)
 constexpr size_t kChunk = 16384;        // refs per chunk of parallel binning and partitioning
@@ -204,8 +204,8 @@ class Builder {
     size_t median(size_t begin, size_t end, int axis, Box* child);
 
     /// For refs [begin, end) that split() made a leaf: `begin` if they are of one kind
-    /// (options_.kinds), else where those of the least kind end after moving them to the front
-    /// (in their order), with the children's bounds in `child`.
+    /// (options_.kinds), else where those of kinds up to the middle of their range end after
+    /// moving them to the front (in their order), with the children's bounds in `child`.
     size_t split_kinds(size_t begin, size_t end, Box* child);
 
     /// n primitives as the SAH counts them: the blocks of options_.leaf_block they fill.

@@ -1,5 +1,6 @@
 // Moving a BVH node's refs to the side of their split: in place from both ends, stably in
-// parallel chunks for large nodes (the same order for any thread count), or at the median.
+// parallel chunks for large nodes (the same order for any thread count), at the median, or by
+// kind (a would-be leaf of several kinds, BvhOptions::kinds).
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -107,8 +108,10 @@ size_t Builder::split_kinds(size_t begin, size_t end, Box* child) {
         most = std::max(most, kinds[refs_[i].id()]);
     }
     if (least == most) return begin;
+    // halving the range of kinds: a would-be leaf of K kinds becomes ≤ log2(K) levels deeper
+    const uint8_t middle = static_cast<uint8_t>((least + most) / 2);
     const auto mid = std::stable_partition(refs_.begin() + begin, refs_.begin() + end,
-                                           [&](const Ref& r) { return kinds[r.id()] == least; });
+                                           [&](const Ref& r) { return kinds[r.id()] <= middle; });
     const size_t m = static_cast<size_t>(mid - refs_.begin());
     bounds_of(begin, m, child[0], child[1]);
     bounds_of(m, end, child[2], child[3]);

@@ -193,17 +193,21 @@ void build_bvh(BuiltScene& scene) {
     options.leaf_block = PrimBlock::kLanes;
     options.traversal_cost = kBlockTraversalCost;
     options.max_leaf_size = kBlockMaxLeaf;
-    // Mesh triangles and other shapes in leaves of their own: a ground polygon's leaf then has
-    // a flat box, which the shadow rays leaving the ground (their origins lifted off it) miss,
-    // instead of a box raised by a shape beside it that every such ray enters and tests.
-    std::vector<uint8_t> kinds(prims.size());
-    for (size_t p = 0; p < prims.size(); ++p)
-        kinds[p] = prims[p].triangle == BvhPrim::kNotTriangle ? 1 : 0;
-    options.kinds = kinds;
     // Primitives that fit one leaf stay in one: the queries test it without any node
     // (BuiltScene::root_leaf), a saving the SAH, which prices the visits below the root, misses.
-    if (prims.size() <= kBlockMaxLeaf)
+    // Otherwise mesh triangles and other shapes get leaves of their own: a ground polygon's
+    // leaf then has a flat box, which the shadow rays leaving the ground (their origins lifted
+    // off it) miss, instead of a box raised by a shape beside it that every such ray enters.
+    std::vector<uint8_t> kinds;
+    if (prims.size() <= kBlockMaxLeaf) {
         options.traversal_cost = std::numeric_limits<float>::infinity();
+    } else {
+        kinds.resize(prims.size());
+        size_t shapes = 0;
+        for (size_t p = 0; p < prims.size(); ++p)
+            shapes += kinds[p] = prims[p].triangle == BvhPrim::kNotTriangle ? 1 : 0;
+        if (shapes > 0 && shapes < prims.size()) options.kinds = kinds;  // both kinds
+    }
     scene.bvh = Bvh8::build(boxes, options);
     // Primitives in blocks, leaf by leaf in node order (those with empty bounds, never hit,
     // are left out); the order itself is not kept.

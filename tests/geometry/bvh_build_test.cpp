@@ -6,6 +6,7 @@
 
 #include <cstring>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "geometry/bvh.h"
@@ -150,6 +151,10 @@ TEST(BvhBuild, LeavesHoldOneKindEach) {
     EXPECT_EQ(split.nodes()[2].count, 2500u);
     EXPECT_EQ(two[split.order()[split.nodes()[1].offset]], 1);
     EXPECT_EQ(two[split.order()[split.nodes()[2].offset]], 2);
+
+    // one kind per primitive, or none
+    options.kinds = std::span<const uint8_t>(two.data(), two.size() - 1);
+    EXPECT_THROW(Bvh::build(same, options), std::invalid_argument);
 }
 
 }  // namespace

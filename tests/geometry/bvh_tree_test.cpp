@@ -167,6 +167,10 @@ TEST(Bvh, SceneLeavesStartBlocksAndHoldEachPrimitiveOnce) {
             const uint32_t blocks = (count + 3) / 4;
             ASSERT_LE(first / 4 + blocks, scene.bvh_blocks.size());
             for (uint32_t b = first / 4; b < first / 4 + blocks; ++b) ++block_used[b];
+            int triangles = 0;  // mesh triangles and other shapes never share a leaf
+            for (uint32_t slot = first; slot < first + count; ++slot)
+                triangles += scene.bvh_prim(slot).triangle != BvhPrim::kNotTriangle;
+            EXPECT_TRUE(triangles == 0 || triangles == static_cast<int>(count)) << first;
             for (uint32_t slot = first; slot < first + count; ++slot) {
                 const BvhPrim p = scene.bvh_prim(slot);
                 ASSERT_LT(p.shape, scene.shapes.size());

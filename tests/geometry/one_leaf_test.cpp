@@ -119,6 +119,17 @@ TEST(OneLeaf, TheLeafAloneEqualsTheTraversedBvhAndTestingEverything) {
     EXPECT_LT(cd.bounds, ca.bounds / 2);
 }
 
+// A few primitives of both kinds (a ground quad's two triangles and two spheres) stay one leaf:
+// leaves by kind (BvhOptions::kinds) start only where the BVH has nodes anyway.
+TEST(OneLeaf, AFewTrianglesAndShapesShareTheOneLeaf) {
+    const ObjectDesc quad =
+        test::mesh_object({{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}}, {0, 1, 2, 0, 2, 3}, 0);
+    const BuiltScene scene =
+        build_scene(scene_with({quad, sphere({0, 0, 1}, 1.0f, 0), sphere({2, 2, 1}, 0.5f, 1)}));
+    EXPECT_EQ(scene.root_leaf, 4u);
+    EXPECT_EQ(scene.mesh_triangles, 2u);
+}
+
 TEST(OneLeaf, ShadowSegmentsFourAtATimeBitForBit) {
     // transmittances() in a scene whose BVH is one leaf takes four segments at a time against
     // each sphere in world form and each plane (query_leaf_packet.cpp): every transmittance and

@@ -19,10 +19,10 @@ class TempDir {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
         std::string name =
             info != nullptr ? std::string(info->test_suite_name()) + "." + info->name() : "luz";
-        // one folder, not nested ones: a parameterised test's name holds '/' (Formats/AtomicWrite
-        // …/"exr"), whose parent folders the destructor would leave behind in /tmp
-        std::replace_if(
-            name.begin(), name.end(), [](char c) { return c == '/' || c == '"'; }, '_');
+        // one folder, not nested ones: a parameterised test's name holds '/'
+        // (Formats/AtomicWrite.LeavesOnlyTheFileAfterSuccess/3), whose parent folders the
+        // destructor would leave behind in /tmp
+        std::replace(name.begin(), name.end(), '/', '_');
         path_ = std::filesystem::temp_directory_path() /
                 ("luz_image_test_" + std::to_string(::getpid()) + "_" + name);
         std::filesystem::remove_all(path_);
