@@ -202,10 +202,10 @@ void build_bvh(BuiltScene& scene) {
     if (prims.size() <= kBlockMaxLeaf) {
         options.traversal_cost = std::numeric_limits<float>::infinity();
     } else {
-        kinds.resize(prims.size());
-        size_t shapes = 0;
+        kinds.resize(prims.size());  // 0: a mesh triangle, 1: any other shape
         for (size_t p = 0; p < prims.size(); ++p)
-            shapes += kinds[p] = prims[p].triangle == BvhPrim::kNotTriangle ? 1 : 0;
+            kinds[p] = prims[p].triangle == BvhPrim::kNotTriangle ? 1 : 0;
+        const size_t shapes = std::count(kinds.begin(), kinds.end(), uint8_t{1});
         if (shapes > 0 && shapes < prims.size()) options.kinds = kinds;  // both kinds
     }
     scene.bvh = Bvh8::build(boxes, options);
