@@ -121,6 +121,32 @@ exr_result_t compress_or_store(exr_encode_pipeline_t* encode) {
     return rv;
 }
 
+/// How many times its packed size a chunk of `compression` can at most unpack to, or 0 where
+/// no bound is known (DWAA, DWAB). RLE stores a run of at most 128 bytes in two; zlib (ZIP,
+/// ZIPS) inflates at most 1032 times; PXR24 is zlib over floats cut to three bytes; PIZ's
+/// Huffman code spends at least 10 bits on a run of at most 256 16-bit values (410 times); B44
+/// packs a 4 × 4 block of half values (32 bytes) into 14, B44A a flat one into 3.
+uint64_t max_expansion(exr_compression_t compression) {
+    switch (compression) {
+        case EXR_COMPRESSION_NONE:
+            return 1;
+        case EXR_COMPRESSION_RLE:
+            return 64;
+        case EXR_COMPRESSION_ZIPS:
+        case EXR_COMPRESSION_ZIP:
+            return 1032;
+        case EXR_COMPRESSION_PXR24:
+            return 1032 * 4 / 3 + 1;
+        case EXR_COMPRESSION_PIZ:
+            return 512;
+        case EXR_COMPRESSION_B44:
+        case EXR_COMPRESSION_B44A:
+            return 11;
+        default:
+            return 0;
+    }
+}
+
 }  // namespace
 
 std::string encode_exr(const Image& img) { return encode_exr_layers(img, {}); }
@@ -350,6 +376,14 @@ Image decode_exr_layer(std::string_view bytes, const std::string& layer) {
                                                         cinfo.packed_size != cinfo.unpacked_size)) {
             fail("the chunk at (" + std::to_string(x0) + ", " + std::to_string(y0) + ") holds " +
                  std::to_string(cinfo.packed_size) + " bytes for " +
+                 std::to_string(cinfo.unpacked_size));
+        }
+        // Nor does it unpack to more than its compression can give (a corrupt data window of a
+        // small file would have the library take gigabytes for the chunk before failing).
+        const uint64_t expansion = max_expansion(static_cast<exr_compression_t>(cinfo.compression));
+        if (expansion != 0 && cinfo.unpacked_size > expansion * cinfo.packed_size + 4096) {
+            fail("the chunk at (" + std::to_string(x0) + ", " + std::to_string(y0) + ") holds " +
+                 std::to_string(cinfo.packed_size) + " bytes, too few for its " +
                  std::to_string(cinfo.unpacked_size));
         }
         if (!session.decoding) {

@@ -99,6 +99,29 @@ TEST(ExrCodec, AHugeDataWindowInASmallFileIsRefusedBeforeTakingItsMemory) {
     EXPECT_EXIT(decode_in_1_gib(), ::testing::ExitedWithCode(0), "invalid OpenEXR: .*chunk");
 }
 
+TEST(ExrCodec, AWideDataWindowInASmallFileIsRefusedByItsFirstChunksSize) {
+    // Files of 16 × 16 pixels whose header then claims 2^24 columns: the first chunk would
+    // unpack to hundreds of megabytes from a few hundred bytes, more than its compression can
+    // give. It is refused by that, before the library takes the memory to unpack it.
+    for (exr_compression_t compression :
+         {EXR_COMPRESSION_RLE, EXR_COMPRESSION_ZIPS, EXR_COMPRESSION_ZIP, EXR_COMPRESSION_PIZ,
+          EXR_COMPRESSION_PXR24, EXR_COMPRESSION_B44}) {
+        TestFile file;
+        file.compression = compression;
+        file.data_window = box(0, 0, 15, 15);
+        file.channels = rgb(EXR_PIXEL_HALF);
+        std::string bytes = make_file(file);
+        ASSERT_FALSE(HasFatalFailure());
+        const std::string key("dataWindow\0box2i\0", 17);
+        const size_t at = bytes.find(key);
+        ASSERT_NE(at, std::string::npos);
+        const int32_t columns = 1 << 24;  // x max, after the size field, x min and y min
+        std::memcpy(&bytes[at + key.size() + 12], &columns, sizeof columns);
+        EXPECT_NE(error_of(bytes).find("bytes, too few for its"), std::string::npos)
+            << "compression " << compression << ": " << error_of(bytes);
+    }
+}
+
 TEST(ExrCodec, CorruptFilesFailCleanly) {
     // Every byte of small files of each compression set to a few values: an image or an
     // ImageError, never a crash.
