@@ -6,8 +6,9 @@
 # way — and cost a second build of the libraries and four whole-program links; the libraries
 # compiled as unity files, as the sanitizer pass compiles them: a third less compile time),
 # and in Debug with AddressSanitizer and UndefinedBehaviorSanitizer (the `sanitize` preset:
-# `dev` with line tables only, -g1; without luz-mpi and the viewer). The Python bindings and the
-# web page are compiled at -O1 (LUZ_QUICK_BINDINGS).
+# `dev` with line tables only, -g1, without ASan's use-after-scope and UBSan's vptr checks;
+# without luz-mpi and the viewer). The Python bindings are compiled at -O1 and the web page at
+# -O0 (LUZ_QUICK_BINDINGS).
 #   scripts/test.sh                  all of it (CI runs this)
 #   scripts/test.sh --release-only   without the sanitizer pass
 #   scripts/test.sh --save-costs     keep the last run's test times in tests/ctest_costs/ (for
