@@ -233,6 +233,16 @@ inline void expect_pixels(const Image& img, const TestFile& file, const TestChan
     EXPECT_EQ(wrong, 0);
 }
 
+/// Overwrites one corner coordinate of a file's data window in its header: `field` 0..3 is x
+/// min, y min, x max, y max (after the attribute's name, type and size). Fails the test when the
+/// header has no data window.
+inline void set_data_window(std::string& bytes, int field, int32_t value) {
+    const std::string key("dataWindow\0box2i\0", 17);
+    const size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos);
+    std::memcpy(&bytes[at + key.size() + 4 + 4 * field], &value, sizeof value);
+}
+
 inline std::string error_of(std::string_view bytes, const std::string& layer = "") {
     try {
         decode_exr_layer(bytes, layer);
