@@ -379,9 +379,11 @@ Image decode_exr_layer(std::string_view bytes, const std::string& layer) {
                  std::to_string(cinfo.unpacked_size));
         }
         // Nor does it unpack to more than its compression can give (a corrupt data window of a
-        // small file would have the library take gigabytes for the chunk before failing).
+        // small file would have the library take gigabytes for the chunk before failing). The
+        // margin leaves tiny chunks alone, whatever their codec's fixed overhead.
+        constexpr uint64_t kMargin = 4096;
         const uint64_t expansion = max_expansion(static_cast<exr_compression_t>(cinfo.compression));
-        if (expansion != 0 && cinfo.unpacked_size > expansion * cinfo.packed_size + 4096) {
+        if (expansion != 0 && cinfo.unpacked_size > expansion * cinfo.packed_size + kMargin) {
             fail("the chunk at (" + std::to_string(x0) + ", " + std::to_string(y0) + ") holds " +
                  std::to_string(cinfo.packed_size) + " bytes, too few for its " +
                  std::to_string(cinfo.unpacked_size));
