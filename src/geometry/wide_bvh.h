@@ -117,10 +117,35 @@ inline void prefetch_node(const Node* n) {
     for (size_t line = 0; line < sizeof(Node); line += 64) __builtin_prefetch(p + line);
 }
 
-/// Orders m ≤ 8 hit children farthest first (insertion sort by key(child)): the traversals
-/// push all but the last and visit the last, the nearest, now.
+/// Puts a before b if b's key is lower, else leaves them; without a branch (the keys of
+/// neighbouring children are a coin toss to a branch predictor).
+template <class Entry, class Key>
+[[gnu::always_inline]] inline void farther_first(Entry& a, Entry& b, Key&& key) {
+    const bool swap = key(a) < key(b);
+    const Entry x = swap ? b : a, y = swap ? a : b;
+    a = x;
+    b = y;
+}
+
+/// Orders m ≤ 8 hit children farthest first (by key(child)): three or four by a network of
+/// compare-exchanges, more by insertion sort. The traversals push all but the last and visit
+/// the last, the nearest, now.
 template <class Entry, class Key>
 inline void sort_farthest_first(Entry* h, int m, Key&& key) {
+    if (m == 3) {
+        farther_first(h[0], h[1], key);
+        farther_first(h[1], h[2], key);
+        farther_first(h[0], h[1], key);
+        return;
+    }
+    if (m == 4) {
+        farther_first(h[0], h[1], key);
+        farther_first(h[2], h[3], key);
+        farther_first(h[0], h[2], key);
+        farther_first(h[1], h[3], key);
+        farther_first(h[1], h[2], key);
+        return;
+    }
     for (int i = 1; i < m; ++i) {
         for (int j = i; j > 0 && key(h[j - 1]) < key(h[j]); --j) {
             const Entry s = h[j];
