@@ -117,8 +117,8 @@ inline void prefetch_node(const Node* n) {
     for (size_t line = 0; line < sizeof(Node); line += 64) __builtin_prefetch(p + line);
 }
 
-/// Puts a before b if b's key is lower, else leaves them; without a branch (the keys of
-/// neighbouring children are a coin toss to a branch predictor).
+/// Orders a and b farther first: swaps them when a's key is lower than b's. Without a branch:
+/// which of two neighbouring children is farther is a coin toss to a branch predictor.
 template <class Entry, class Key>
 [[gnu::always_inline]] inline void farther_first(Entry& a, Entry& b, Key&& key) {
     const bool swap = key(a) < key(b);

@@ -17,8 +17,8 @@ struct Child {
     int id;  // which child: every one must come out once
 };
 
-/// Sorts `in` as the traversals do and checks the result against std::sort: the same keys in
-/// descending order, each child once.
+/// Sorts `in` as the traversals do and checks the result: keys in descending order, and each
+/// child of `in` once, with its own key.
 void expect_farthest_first(std::vector<Child> in) {
     std::vector<Child> out = in;
     bvh_detail::sort_farthest_first(out.data(), static_cast<int>(out.size()),
