@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # luz against POV-Ray 3.7 on the seven Standard Procedural Databases scenes (issue 39's table):
 # each scene rendered by both, whole-process wall time, 2 threads, runs alternating luz / POV-Ray,
-# at 512² and 2048²; medians. luz renders NAME.nff, or json/NAME/scene.json while it cannot read
+# at 512² and 2048²; medians, and in brackets the range of the runs' own ratios. luz renders NAME.nff, or json/NAME/scene.json while it cannot read
 # NFF; POV-Ray renders NAME.pov (`povray +I… +W… +H… +WT2 -D -GA`).
 #
 # usage: bench/spd.sh [--spd DIR] [--sizes "512 2048"] [--runs N] [--threads N] [--scenes "…"]
@@ -94,7 +94,11 @@ for name in os.environ["SCENES"].split():
             t_pov.append(timed(["povray", "+I" + pov, f"+W{s}", f"+H{s}", f"+WT{threads}",
                                 "-D", "-GA", "+O" + os.path.join(work, f"{name}_pov.png")], work))
         a, b = statistics.median(t_luz), statistics.median(t_pov)
-        cells.append(f"{a:.3f} / {b:.3f} s | {b / a:.1f}×")
+        # the ratio of the medians, then the range of the runs' own ratios (each run's POV-Ray
+        # time over its luz time): how far one run may land from the median on this machine
+        pairs = sorted(p / l for l, p in zip(t_luz, t_pov))
+        spread = f" ({pairs[0]:.1f}–{pairs[-1]:.1f})" if runs > 1 else ""
+        cells.append(f"{a:.3f} / {b:.3f} s | {b / a:.1f}×{spread}")
     tag = "" if scene.endswith(".nff") else " (JSON)"
     print(f"| {name}{tag} | " + " | ".join(cells) + " |", flush=True)
 EOF
