@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # luz against POV-Ray 3.7 on the seven Standard Procedural Databases scenes (issue 39's table):
 # each scene rendered by both, whole-process wall time, 2 threads, runs alternating luz / POV-Ray,
-# at 512² and 2048²; medians, and in brackets the range of the runs' own ratios. luz renders NAME.nff, or json/NAME/scene.json while it cannot read
-# NFF; POV-Ray renders NAME.pov (`povray +I… +W… +H… +WT2 -D -GA`).
+# at 512² and 2048²; medians, and in brackets the range of the runs' own ratios. luz renders
+# NAME.nff, or json/NAME/scene.json while it cannot read NFF; POV-Ray renders NAME.pov
+# (`povray +I… +W… +H… +WT2 -D -GA`). Ratios to two decimals: 4.98× is not rounded to 5.0×.
 #
 # usage: bench/spd.sh [--spd DIR] [--sizes "512 2048"] [--runs N] [--threads N] [--scenes "…"]
 #   --spd DIR      the SPD folder (default ../shared/spd beside the repository, or /work/shared/spd)
@@ -72,7 +73,8 @@ def timed(argv, cwd):
         sys.exit(f"failed ({p.returncode}): {' '.join(argv)}\n{p.stderr.decode()[-500:]}")
     return wall
 
-cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
+cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo")
+            if l.startswith("model name")), "?")
 print(f"# {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, {os.cpu_count()} CPUs: {cpu}; "
       f"load {os.getloadavg()[0]:.2f}; {threads} threads, median of {runs} alternating runs")
 head = "| scene | " + " | ".join(f"{s}² luz / POV-Ray | ratio" for s in sizes) + " |"
@@ -97,8 +99,8 @@ for name in os.environ["SCENES"].split():
         # the ratio of the medians, then the range of the runs' own ratios (each run's POV-Ray
         # time over its luz time): how far one run may land from the median on this machine
         pairs = sorted(p / l for l, p in zip(t_luz, t_pov))
-        spread = f" ({pairs[0]:.1f}–{pairs[-1]:.1f})" if runs > 1 else ""
-        cells.append(f"{a:.3f} / {b:.3f} s | {b / a:.1f}×{spread}")
+        spread = f" ({pairs[0]:.2f}–{pairs[-1]:.2f})" if runs > 1 else ""
+        cells.append(f"{a:.3f} / {b:.3f} s | {b / a:.2f}×{spread}")
     tag = "" if scene.endswith(".nff") else " (JSON)"
     print(f"| {name}{tag} | " + " | ".join(cells) + " |", flush=True)
 EOF
