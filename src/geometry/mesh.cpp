@@ -42,14 +42,23 @@ std::vector<Vec3> angle_weighted_normals(const std::vector<Vec3>& p,
     return n;
 }
 
-}  // namespace
-
-Vec3 Mesh::face_normal(size_t t) const {
+/// The unit winding normal of triangle t of `mesh` (Mesh::face_normal()).
+Vec3 winding_normal(const Mesh& mesh, size_t t) {
     Vec3 p0, p1, p2;
-    vertices(t, p0, p1, p2);
+    mesh.vertices(t, p0, p1, p2);
     const Vec3 n = unit_or_zero(cross(p1 - p0, p2 - p0));
     return n == Vec3{0.0f} ? Vec3{0, 0, 1} : n;
 }
+
+/// The face normals of `mesh`, once its positions and indices are final.
+Mesh with_face_normals(Mesh mesh) {
+    mesh.face_normals.resize(mesh.triangle_count());
+    for (size_t t = 0; t < mesh.face_normals.size(); ++t)
+        mesh.face_normals[t] = winding_normal(mesh, t);
+    return mesh;
+}
+
+}  // namespace
 
 Vec3 Mesh::shading_normal(size_t t, float b1, float b2, const Vec3& Ng) const {
     if (normals.empty()) return Ng;
@@ -102,7 +111,7 @@ Mesh build_mesh(const ObjectDesc& o) {
     if (!o.smooth) {
         mesh.positions = std::move(world);
         mesh.indices = std::move(position);
-        return mesh;
+        return with_face_normals(std::move(mesh));
     }
 
     // Smooth: one vertex per distinct (position, file normal) pair; a corner without a usable
@@ -119,7 +128,7 @@ Mesh build_mesh(const ObjectDesc& o) {
         mesh.positions = std::move(world);
         mesh.normals = computed;
         mesh.indices = std::move(position);
-        return mesh;
+        return with_face_normals(std::move(mesh));
     }
     std::unordered_map<uint64_t, uint32_t> vertex_of;
     vertex_of.reserve(position.size());
@@ -136,7 +145,7 @@ Mesh build_mesh(const ObjectDesc& o) {
         }
         mesh.indices[c] = it->second;
     }
-    return mesh;
+    return with_face_normals(std::move(mesh));
 }
 
 }  // namespace luz

@@ -17,6 +17,7 @@ struct Mesh {
     std::vector<Vec3> normals;       ///< smooth: unit shading normal per vertex; flat: empty
     std::vector<uint32_t> indices;   ///< 3 per triangle, counter-clockwise seen from outside
     std::vector<int32_t> materials;  ///< per triangle: index into SceneDesc::materials
+    std::vector<Vec3> face_normals;  ///< per triangle: face_normal(), kept by build_mesh()
     Bounds3 bounds;                  ///< of the vertices triangles use
 
     size_t triangle_count() const { return indices.size() / 3; }
@@ -28,7 +29,8 @@ struct Mesh {
         p2 = positions[indices[3 * t + 2]];
     }
     /// The unit winding normal (p1 − p0) × (p2 − p0) of triangle t; +z for a zero-area one.
-    Vec3 face_normal(size_t t) const;
+    /// Kept per triangle (build_mesh()): every hit on a mesh needs it.
+    const Vec3& face_normal(size_t t) const { return face_normals[t]; }
     /// The unit shading normal at barycentrics (b1, b2) of triangle t: the vertex normals
     /// interpolated (smooth), else the face normal; turned to the face normal's side.
     Vec3 shading_normal(size_t t, float b1, float b2) const {
