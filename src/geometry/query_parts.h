@@ -118,28 +118,37 @@ struct ShapeTest {
     CylinderGroupRoots cylinders;
     unsigned one_by_one = 0;
 };
+/// test_shapes()'s first half: the shapes around an axis and the open cylinders among `shapes`.
+[[gnu::always_inline]] inline void test_axial_shapes(const PrimBlock& b, unsigned shapes,
+                                                     const Ray& ray, float t_min, ShapeTest& r,
+                                                     IntersectCounters& counters) {
+    if (const unsigned axis = b.axis_lanes() & shapes; axis != 0) {
+        r.one_by_one &= ~axis_lanes_missed(b, axis, ray);
+        ++counters.bounds;
+    }
+    if (const unsigned cylinders = b.cylinder_lanes() & shapes; cylinders != 0) {
+        r.cylinders = cylinder_lanes_roots(b.cylinders(cylinders), ray, t_min >= 0);
+        r.one_by_one &= ~cylinders | r.cylinders.slow;
+        counters.primitive += static_cast<uint64_t>(lane_count(cylinders & ~r.cylinders.slow));
+    }
+}
+/// test_shapes()'s second half: the spheres among `shapes`.
+[[gnu::always_inline]] inline void test_sphere_shapes(const PrimBlock& b, unsigned spheres,
+                                                      const Ray& ray, float t_min, ShapeTest& r,
+                                                      IntersectCounters& counters) {
+    if (spheres == 0) return;
+    r.spheres = sphere_lanes_roots(b.spheres(spheres), ray, t_min >= 0);
+    r.one_by_one &= ~spheres | r.spheres.slow;
+    counters.primitive += static_cast<uint64_t>(lane_count(spheres & ~r.spheres.slow));
+}
 [[gnu::always_inline]] inline ShapeTest test_shapes(const PrimBlock& b, unsigned shapes,
                                                     const Ray& ray, float t_min,
                                                     IntersectCounters& counters) {
     ShapeTest r;
     r.one_by_one = shapes;
     const unsigned spheres = b.sphere_lanes() & shapes;
-    if (shapes & ~spheres) {  // a block of spheres alone (the sphereflake's) skips these
-        if (const unsigned axis = b.axis_lanes() & shapes; axis != 0) {
-            r.one_by_one &= ~axis_lanes_missed(b, axis, ray);
-            ++counters.bounds;
-        }
-        if (const unsigned cylinders = b.cylinder_lanes() & shapes; cylinders != 0) {
-            r.cylinders = cylinder_lanes_roots(b.cylinders(cylinders), ray, t_min >= 0);
-            r.one_by_one &= ~cylinders | r.cylinders.slow;
-            counters.primitive += static_cast<uint64_t>(lane_count(cylinders & ~r.cylinders.slow));
-        }
-    }
-    if (spheres != 0) {
-        r.spheres = sphere_lanes_roots(b.spheres(spheres), ray, t_min >= 0);
-        r.one_by_one &= ~spheres | r.spheres.slow;
-        counters.primitive += static_cast<uint64_t>(lane_count(spheres & ~r.spheres.slow));
-    }
+    if (shapes & ~spheres) test_axial_shapes(b, shapes, ray, t_min, r, counters);
+    test_sphere_shapes(b, spheres, ray, t_min, r, counters);
     return r;
 }
 
@@ -326,17 +335,22 @@ inline bool cross_triangle(const BuiltScene& scene, const Materials& materials,
                                                  unsigned shapes, const Ray& r, float t_min,
                                                  float t_max, Crossings& crossings,
                                                  IntersectCounters& counters) {
-    const ShapeTest test = test_shapes(b, shapes, r, t_min, counters);
+    // The cylinders first: an opaque one met spares the spheres' test.
+    ShapeTest test;
+    test.one_by_one = shapes;
+    const unsigned spheres = b.sphere_lanes() & shapes;
+    if (shapes & ~spheres) test_axial_shapes(b, shapes, r, t_min, test, counters);
+    for (unsigned hit = test.cylinders.hit; hit != 0; hit &= hit - 1) {
+        const int k = __builtin_ctz(hit);  // counted so, recorded as cross_shape() records them
+        const uint32_t n = roots_within(test.cylinders.t0[k], test.cylinders.t1[k], t_min, t_max);
+        if (!add_shape_crossings(scene, materials, b.shape[k], n, crossings)) return false;
+    }
+    test_sphere_shapes(b, spheres, r, t_min, test, counters);
     for (unsigned hit = test.spheres.hit; hit != 0; hit &= hit - 1) {
         const int k = __builtin_ctz(hit);  // as crossings_at_roots() counts them
         const uint32_t n = roots_within(test.spheres.t0[k], test.spheres.t1[k], t_min, t_max);
         if (n > 0 && !add_crossings(materials, scene.shapes[b.shape[k]].material, n, crossings))
             return false;  // (a sphere is never split)
-    }
-    for (unsigned hit = test.cylinders.hit; hit != 0; hit &= hit - 1) {
-        const int k = __builtin_ctz(hit);  // counted so, recorded as cross_shape() records them
-        const uint32_t n = roots_within(test.cylinders.t0[k], test.cylinders.t1[k], t_min, t_max);
-        if (!add_shape_crossings(scene, materials, b.shape[k], n, crossings)) return false;
     }
     for (unsigned s = test.one_by_one; s != 0; s &= s - 1) {
         if (!cross_shape(scene, materials, b.shape[__builtin_ctz(s)], r, t_min, t_max, crossings,
