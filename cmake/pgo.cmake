@@ -5,10 +5,11 @@
 # with the profile it wrote to <build>/pgo/profile. Functions the renders never ran are
 # optimised as without a profile (-fprofile-partial-training). No floating-point option
 # changes: the images are the same bits as without PGO. Delete <build>/pgo to train again after
-# large changes (a stale profile is only less useful: source changes are ignored with their
-# warning silenced, and counts a change made inconsistent — code newly inlined into a function
-# the profile knows — are smoothed by -fprofile-correction, where GCC would stop with "corrupted
-# profile info"; so are the counts two training threads raced on).
+# large changes; every object then compiles again with the new profile. A stale profile is only
+# less useful: source changes are ignored with their warning silenced, and counts a change made
+# inconsistent (code newly inlined into a function the profile knows) are smoothed by
+# -fprofile-correction, where GCC would stop with "corrupted profile info"; so are the counts two
+# training threads raced on.
 if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
   message(FATAL_ERROR "LUZ_PGO needs GCC (its -fprofile-use and -fprofile-prefix-path)")
 endif()
@@ -35,11 +36,22 @@ add_custom_command(
   USES_TERMINAL)
 add_custom_target(luz_pgo_profile DEPENDS ${luz_pgo_stamp})
 
-# The targets whose objects need the profile before they compile (called once they exist).
+# The targets whose objects need the profile before they compile (called once they exist), and
+# compile again whenever it is trained again (deleting <build>/pgo retrains it): each C++ source
+# of theirs depends on the profile's stamp.
 function(luz_pgo_after_profile)
   foreach(target ${ARGN})
     if(TARGET ${target})
       add_dependencies(${target} luz_pgo_profile)
+      get_target_property(dir ${target} SOURCE_DIR)
+      get_target_property(sources ${target} SOURCES)
+      foreach(source ${sources})
+        if(source MATCHES "\\.(cpp|cc|cxx)$" AND NOT source MATCHES "^\\$<")
+          cmake_path(ABSOLUTE_PATH source BASE_DIRECTORY ${dir})
+          set_property(SOURCE ${source} TARGET_DIRECTORY ${target} APPEND
+                       PROPERTY OBJECT_DEPENDS ${luz_pgo_stamp})
+        endif()
+      endforeach()
     endif()
   endforeach()
 endfunction()
