@@ -43,11 +43,12 @@ uint64_t default_memory_limit() {
 
 namespace {
 
-// Bytes per part, measured as resident sizes: a tessellated triangle (3 vertices with normals,
-// projected copies, bins); a mesh triangle (shared vertices, indices, material, BVH node share
-// and leaf copy, face normal); an object (its ObjectDesc, which `luz render` holds three times
-// during the first frame, its built Shape, its primitive and BVH share: 400 000 spheres peak at 645
-// MB).
+// Bytes per part, measured as resident sizes:
+// - a tessellated triangle: 3 vertices with normals, projected copies, bins;
+// - a mesh triangle: shared vertices, indices, material, face normal, BVH node share and leaf
+//   copy;
+// - an object: its ObjectDesc (which `luz render` holds three times during the first frame),
+//   its built Shape, its primitive and BVH share; 400 000 spheres peak at 645 MB.
 constexpr uint64_t kTessellatedTriangleBytes = 160;
 constexpr uint64_t kMeshTriangleBytes = 204;
 constexpr uint64_t kObjectBytes = 1600;

@@ -114,14 +114,17 @@ struct BlockTest {
 /// (`one_by_one`: other shapes, the axis lanes not ruled out, the spheres and cylinders float
 /// cannot be trusted with; counted by their tests).
 struct ShapeTest {
+    explicit ShapeTest(unsigned shapes) : one_by_one(shapes) {}
     SphereGroupRoots spheres;
     CylinderGroupRoots cylinders;
-    unsigned one_by_one = 0;
+    unsigned one_by_one;
 };
-/// test_shapes()'s first half: the shapes around an axis and the open cylinders among `shapes`.
+/// test_shapes()'s first part, into r: the shapes around an axis and the open cylinders among
+/// `shapes` (a block of spheres alone, the sphereflake's, has none to look for).
 [[gnu::always_inline]] inline void test_axial_shapes(const PrimBlock& b, unsigned shapes,
                                                      const Ray& ray, float t_min, ShapeTest& r,
                                                      IntersectCounters& counters) {
+    if ((shapes & ~b.sphere_lanes()) == 0) return;
     if (const unsigned axis = b.axis_lanes() & shapes; axis != 0) {
         r.one_by_one &= ~axis_lanes_missed(b, axis, ray);
         ++counters.bounds;
@@ -132,10 +135,11 @@ struct ShapeTest {
         counters.primitive += static_cast<uint64_t>(lane_count(cylinders & ~r.cylinders.slow));
     }
 }
-/// test_shapes()'s second half: the spheres among `shapes`.
-[[gnu::always_inline]] inline void test_sphere_shapes(const PrimBlock& b, unsigned spheres,
+/// test_shapes()'s second part, into r: the spheres among `shapes`.
+[[gnu::always_inline]] inline void test_sphere_shapes(const PrimBlock& b, unsigned shapes,
                                                       const Ray& ray, float t_min, ShapeTest& r,
                                                       IntersectCounters& counters) {
+    const unsigned spheres = b.sphere_lanes() & shapes;
     if (spheres == 0) return;
     r.spheres = sphere_lanes_roots(b.spheres(spheres), ray, t_min >= 0);
     r.one_by_one &= ~spheres | r.spheres.slow;
@@ -144,11 +148,9 @@ struct ShapeTest {
 [[gnu::always_inline]] inline ShapeTest test_shapes(const PrimBlock& b, unsigned shapes,
                                                     const Ray& ray, float t_min,
                                                     IntersectCounters& counters) {
-    ShapeTest r;
-    r.one_by_one = shapes;
-    const unsigned spheres = b.sphere_lanes() & shapes;
-    if (shapes & ~spheres) test_axial_shapes(b, shapes, ray, t_min, r, counters);
-    test_sphere_shapes(b, spheres, ray, t_min, r, counters);
+    ShapeTest r(shapes);
+    test_axial_shapes(b, shapes, ray, t_min, r, counters);
+    test_sphere_shapes(b, shapes, ray, t_min, r, counters);
     return r;
 }
 
@@ -335,17 +337,16 @@ inline bool cross_triangle(const BuiltScene& scene, const Materials& materials,
                                                  unsigned shapes, const Ray& r, float t_min,
                                                  float t_max, Crossings& crossings,
                                                  IntersectCounters& counters) {
-    // The cylinders first: an opaque one met spares the spheres' test.
-    ShapeTest test;
-    test.one_by_one = shapes;
-    const unsigned spheres = b.sphere_lanes() & shapes;
-    if (shapes & ~spheres) test_axial_shapes(b, shapes, r, t_min, test, counters);
+    // test_shapes() in its two parts, the cylinders first: an opaque one met spares the
+    // spheres' test.
+    ShapeTest test(shapes);
+    test_axial_shapes(b, shapes, r, t_min, test, counters);
     for (unsigned hit = test.cylinders.hit; hit != 0; hit &= hit - 1) {
         const int k = __builtin_ctz(hit);  // counted so, recorded as cross_shape() records them
         const uint32_t n = roots_within(test.cylinders.t0[k], test.cylinders.t1[k], t_min, t_max);
         if (!add_shape_crossings(scene, materials, b.shape[k], n, crossings)) return false;
     }
-    test_sphere_shapes(b, spheres, r, t_min, test, counters);
+    test_sphere_shapes(b, shapes, r, t_min, test, counters);
     for (unsigned hit = test.spheres.hit; hit != 0; hit &= hit - 1) {
         const int k = __builtin_ctz(hit);  // as crossings_at_roots() counts them
         const uint32_t n = roots_within(test.spheres.t0[k], test.spheres.t1[k], t_min, t_max);

@@ -1,5 +1,6 @@
 // Scenes whose BVH is one leaf (BuiltScene::root_leaf): the leaf alone, the traversed BVH and
-// testing everything give the same bits; shadow segments and packets four at a time bit for bit.
+// testing everything give the same bits; shadow segments and packets four at a time bit for bit;
+// an opaque cylinder ends a shadow ray's block before its spheres.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -128,6 +129,41 @@ TEST(OneLeaf, AFewTrianglesAndShapesShareTheOneLeaf) {
         build_scene(scene_with({quad, sphere({0, 0, 1}, 1.0f, 0), sphere({2, 2, 1}, 0.5f, 1)}));
     EXPECT_EQ(scene.root_leaf, 4u);
     EXPECT_EQ(scene.mesh_triangles, 2u);
+}
+
+TEST(OneLeaf, AnOpaqueCylinderSparesItsBlocksSpheres) {
+    // Two open cylinders in world form and two spheres: one leaf, one block. A shadow ray that
+    // an opaque cylinder blocks stops before the spheres' test (query_parts.h,
+    // cross_block_shapes()); one that no cylinder blocks tests all four lanes.
+    const auto open_cylinder = [](Vec3 base, int material) {
+        ObjectDesc o;
+        o.type = ShapeType::cylinder;
+        o.base = base;
+        o.axis = {0, 0, 1};
+        o.height = 2.0f;
+        o.radius = 0.5f;
+        o.caps = false;
+        o.material = material;
+        return o;
+    };
+    const SceneDesc d = scene_with({open_cylinder({0, 0, 0}, 0), open_cylinder({3, 0, 0}, 1),
+                                    sphere({6, 0, 1}, 0.5f, 0), sphere({-3, 0, 1}, 0.5f, 0)});
+    const BuiltScene scene = build_scene(d);
+    ASSERT_EQ(scene.root_leaf, 4u);
+    ASSERT_EQ(scene.bvh_blocks.size(), 1u);
+    ASSERT_EQ(lane_count(scene.bvh_blocks[0].cylinder_lanes()), 2);
+    ASSERT_EQ(lane_count(scene.bvh_blocks[0].sphere_lanes()), 2);
+
+    IntersectCounters blocked;  // through the opaque cylinder at x = 0
+    EXPECT_EQ(transmittance(scene, d.materials, Ray{{0, -5, 1}, {0, 1, 0}}, 0.0f, 10.0f, blocked),
+              0.0f);
+    EXPECT_EQ(blocked.primitive, 2u);
+
+    IntersectCounters glass;  // through the glass cylinder at x = 3 (0.7, crossed twice)
+    EXPECT_FLOAT_EQ(
+        transmittance(scene, d.materials, Ray{{3, -5, 1}, {0, 1, 0}}, 0.0f, 10.0f, glass),
+        0.7f * 0.7f);
+    EXPECT_EQ(glass.primitive, 4u);
 }
 
 TEST(OneLeaf, ShadowSegmentsFourAtATimeBitForBit) {
