@@ -51,7 +51,8 @@ int run(int argc, char** argv, const FrameRenderer* render_frame) {
     luz::add_view_options(*view, view_options);
     luz::FiguresOptions figures_options;
     CLI::App* figures = app.add_subcommand(
-        "figures", "regenerate the lecture's figures into a folder with index.html");
+        "figures",
+        "regenerate the lecture's figures and the SPD gallery into a folder with index.html");
     luz::add_figures_options(*figures, figures_options);
     luz::WebOptions web_options;
     CLI::App* web = app.add_subcommand("web", "write luz.html: luz in a web page, offline");

@@ -8,7 +8,9 @@
 namespace luz {
 
 void add_render_options(CLI::App& cmd, RenderArgs& o) {
-    cmd.add_option("SCENE", o.scene, "scene file, or demo:NAME (see `luz scenes`)")->required();
+    cmd.add_option("SCENE", o.scene,
+                   "scene file (JSON, or NFF: .nff), or demo:NAME (see `luz scenes`)")
+        ->required();
     cmd.add_option("-o,--output", o.output,
                    "output image; the extension picks the format: .png .ppm .pfm .exr "
                    "(default: the scene's name + .png)")
@@ -77,8 +79,8 @@ void add_render_options(CLI::App& cmd, RenderArgs& o) {
             },
             "", ""));
     cmd.footer(
-        "SCENE is a scene file or demo:NAME (see `luz scenes`). Options that name a scene key "
-        "override it and are checked like it.\n"
+        "SCENE is a scene file (JSON, or NFF: .nff) or demo:NAME (see `luz scenes`). Options that "
+        "name a scene key override it and are checked like it.\n"
         "Exit status: 0 success; 2 bad input (one line naming the file and the place); 1 any "
         "other failure; 130/143 interrupted by SIGINT/SIGTERM (nothing written).\n"
         "Environment: LUZ_CHECKPOINT_SECONDS, the --checkpoint interval (default 10); "

@@ -16,7 +16,7 @@
 namespace luz {
 
 void add_view_options(CLI::App& cmd, ViewOptions& o) {
-    cmd.add_option("SCENE", o.scene, "scene file, or demo:NAME")->required();
+    cmd.add_option("SCENE", o.scene, "scene file (JSON, or NFF: .nff), or demo:NAME")->required();
     cmd.add_option("--set", o.sets, "override a scene key by dotted path; repeatable")
         ->type_name("PATH=JSON")
         ->allow_extra_args(false);

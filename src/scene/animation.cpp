@@ -31,11 +31,11 @@ std::vector<Override> frame_overrides(const AnimationDesc& a, int f, const std::
             json = "[";
             for (std::size_t c = 0; c < v.size(); ++c) {
                 if (c) json += ", ";
-                json += format_number(v[c]);
+                json += json_number(v[c]);
             }
             json += "]";
         } else {
-            json = format_number(v[0]);
+            json = json_number(v[0]);
         }
         out.push_back(
             {key.path, json,

@@ -59,7 +59,7 @@ double read_number(const Json& j, const KeyPath& path, const Limit& limit) {
     }
     // The float must be in range too: 1e-50 is > 0 but becomes 0 as a float.
     if (!limit.contains(d) || !limit.contains(static_cast<float>(d))) {
-        fail(path.str(), limit.text() + ", got " + j.dump());
+        fail(path.str(), limit.text() + ", got " + format_number(d));  // 0.2 read as a float: 0.2
     }
     return d;
 }

@@ -283,21 +283,38 @@ class NffReader {
         add_shape(shape, first);
     }
 
+    /// The N of `p N` or `pp N`, whole: read as a double (a count above 2²⁴ is exact too, a
+    /// float's is not), after read_numbers() checked that it is one number.
+    double vertex_count(Tokens& tokens, const char* name) {
+        const std::string_view text = tokens.rest();
+        float as_float = 0;
+        read_numbers(tokens, &as_float, 1, 1, file_, line(), name);
+        double count = as_float;
+        const std::string_view token = text.substr(0, text.find_first_of(" \t\r"));
+        std::from_chars(token.data(), token.data() + token.size(), count);
+        if (count != std::floor(count)) {
+            fail_at(file_, line(),
+                    std::string(name) + ": expected a whole number of vertices, got " +
+                        format_number(count));
+        }
+        return count;
+    }
+
     /// `p N` (N lines x y z) or `pp N` (N lines x y z nx ny nz), triangulated into the mesh of
     /// the current material.
     void polygon(Tokens& tokens, bool patch) {
         const char* name = patch ? "pp" : "p";
         const std::size_t first = line();
-        float count = 0;
-        read_numbers(tokens, &count, 1, 1, file_, line(), name);
-        if (!(count == std::floor(count) && count <= kMaxPolygonVertices)) {
-            fail_at(file_, line(),
-                    std::string(name) + ": expected a whole number of vertices, got " +
-                        format_number(count));
-        }
+        const double count = vertex_count(tokens, name);
         if (count < 3) {
             fail_at(file_, line(),
                     std::string(name) + ": a polygon needs at least 3 vertices, got " +
+                        format_number(count));
+        }
+        if (count > kMaxPolygonVertices) {
+            fail_at(file_, line(),
+                    std::string(name) + ": a polygon may have at most " +
+                        format_number(kMaxPolygonVertices) + " vertices, got " +
                         format_number(count));
         }
         const auto n = static_cast<std::size_t>(count);

@@ -36,7 +36,7 @@ TEST(JsonText, ADuplicateKeyNamesBothPlaces) {
               "s.json:3:3: duplicate key \"a\" (first at 1:2): a key may appear once in an object");
     // an escaped spelling is the same key; an escaped quote inside a key is skipped over
     EXPECT_THAT(json_error_of(R"({"a\"b": 1, "a\u0022b": 2})"),
-                HasSubstr("s.json:1:13: duplicate key \"a\"b\" (first at 1:2)"));
+                HasSubstr("s.json:1:13: duplicate key \"a\\\"b\" (first at 1:2)"));
     // the same key in different objects is fine
     EXPECT_EQ(json_error_of(R"({"x": {"a": 1}, "y": {"a": 1}, "z": [{"a": 1}, {"a": 2}]})"),
               "(no error)");
@@ -135,6 +135,18 @@ TEST(MessageText, QuotesEscapeAndShorten) {
     // characters, not bytes: é is two bytes, one character, never cut in half
     EXPECT_EQ(printable("\xC3\xA9\xC3\xA9\xC3\xA9", 2),
               "\xC3\xA9\xC3\xA9\xE2\x80\xA6 (3 characters)");
+    // a quoted value's own quotes and backslashes escaped, so that the quotes end where it does
+    EXPECT_EQ(quote("ab\"c\\d"), "\"ab\\\"c\\\\d\"");
+    EXPECT_EQ(printable("a\\b"), "a\\b");  // a path keeps its backslashes
+    // bytes that are not UTF-8 (a stray byte, a cut or overlong sequence, a surrogate) as \xXX
+    EXPECT_EQ(printable("a\xFF"
+                        "b"),
+              "a\\xFFb");
+    EXPECT_EQ(quote("\xC3"), "\"\\xC3\"");
+    EXPECT_EQ(printable("\xC0\xAF"), "\\xC0\\xAF");
+    EXPECT_EQ(printable("\xED\xA0\x80"), "\\xED\\xA0\\x80");
+    EXPECT_EQ(printable("\xF0\x9F\x99\x82 \xE2\x82\xAC"), "\xF0\x9F\x99\x82 \xE2\x82\xAC");
+    EXPECT_EQ(printable(std::string(3, '\xFF'), 2), "\\xFF\\xFF\xE2\x80\xA6 (3 characters)");
     EXPECT_EQ(bytes_text(3u << 20), "3.0 MiB");
 }
 

@@ -17,6 +17,7 @@
 namespace luz {
 namespace {
 
+using ::testing::EndsWith;
 using ::testing::HasSubstr;
 
 const std::string kView = "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 4 3\n";
@@ -280,6 +281,14 @@ TEST(NffReader, BadInputNamesTheLine) {
         {v + "\n# c\nsphere 0 0 0 1\n", "dir/t.nff:10: unknown statement \"sphere\""},
         {v + "p 2\n0 0 0\n1 0 0\n", "dir/t.nff:8: p: a polygon needs at least 3 vertices, got 2"},
         {v + "p 2.5\n", "dir/t.nff:8: p: expected a whole number of vertices, got 2.5"},
+        // counts beyond a float's 2²⁴ read exactly, whole numbers shown whole
+        {v + "p 999999999\n",
+         "dir/t.nff:8: p: a polygon may have at most 100000000 vertices, got 999999999"},
+        {v + "pp 2147483647\n",
+         "dir/t.nff:8: pp: a polygon may have at most 100000000 vertices, got 2147483647"},
+        {v + "p 16777217\n0 0 0\n",
+         "dir/t.nff:8: p: the file ends before its 16777217 vertices (it has 1)"},
+        {v + "p 1e3\n0 0 0\n", "dir/t.nff:8: p: the file ends before its 1000 vertices"},
         {v + "p 4\n0 0 0\n1 0 0\n",
          "dir/t.nff:8: p: the file ends before its 4 vertices (it has 2)"},
         {v + "pp 3\n0 0 0 0 0 1\n1 0 0\n", "dir/t.nff:10: pp vertex (x y z nx ny nz): expected 6"},
@@ -306,12 +315,17 @@ TEST(NffReader, BadInputNamesTheLine) {
          "dir/t.nff:4: camera.up: must not be parallel"},
         {v + "f 2 1 1 1 0 1 0 1\n", "dir/t.nff:8: materials.f1.ka: "},
         {v + "l 0 0 0 -1 0 0\n", "dir/t.nff:8: lights.0.intensity: "},
+        // values read into floats shown as written, not as the double nearest the float
+        {"v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 100000 3\n",
+         "dir/t.nff:7: resolution: expected two whole numbers in [1, 65536], got 100000 3"},
     };
     for (const auto& [text, message] : cases) {
         const std::string e = nff_error_of(text);
         EXPECT_THAT(e, HasSubstr(message)) << text;
         EXPECT_EQ(e.find('\n'), std::string::npos) << e;
-    }
+    }  // a value read into a float shown as written, not as the double nearest that float
+    EXPECT_THAT(nff_error_of(v + "f 1 0 0 0.8 -0.2 10 0 1\n"),
+                EndsWith("dir/t.nff:8: materials.f1.ks: must be in [0, 1], got -0.2"));
 }
 
 /// Every statement kind, objects before the first `f` and after a material comes back.
