@@ -38,7 +38,7 @@ add_custom_target(luz_pgo_profile DEPENDS ${luz_pgo_stamp})
 
 # The targets whose objects need the profile before they compile (called once they exist), and
 # compile again whenever it is trained again (deleting <build>/pgo retrains it): each C++ source
-# of theirs depends on the profile's stamp.
+# of theirs depends on the profile's stamp (tests/package/pgo_rebuild_test.sh checks it).
 function(luz_pgo_after_profile)
   foreach(target ${ARGN})
     if(TARGET ${target})
