@@ -8,6 +8,8 @@
                                     console errors; keeps a screenshot at SHOT."""
 
 import glob
+import html
+import json
 import os
 import re
 import shutil
@@ -15,6 +17,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import urllib.parse
 
 LIMIT_SECONDS = 120
 FIGURES = ["diffuse_specular", "lambert", "distance", "specular_n", "specular_ks", "terms",
@@ -70,11 +73,20 @@ def run(luz, out):
         fail("scenes/bunny.obj not copied")
     if re.search(r'(src|href)="(https?:)?//', page):
         fail("the page refers to an external URL")
-    # With the web page built into luz (luz web), every scene link has its live twin.
-    live = re.findall(r'class="live" href="(luz\.html#scene=[^"]+)"', page)
+    # With the web page built into luz (luz web), every JSON scene link has its live twin, and
+    # a live link's URL carries a scene's JSON or a built-in scene's name: the page reads nothing
+    # else there (docs/WEB.md#url), so an NFF scene (the SPD figure's) has none.
+    live = re.findall(r'class="live" href="luz\.html#scene=([^"]+)"', page)
     if os.path.isfile(os.path.join(out, "luz.html")):
         if len(live) < len(re.findall(r'href="scenes/[^"]+\.json"', page)):
             fail(f"only {len(live)} figure scenes link to luz.html")
+        for payload in live:
+            text = urllib.parse.unquote(html.unescape(payload))
+            if not text.startswith("demo:"):
+                try:
+                    json.loads(text)
+                except ValueError as e:
+                    fail(f"a live link carries no JSON ({e}): {text[:60]!r}")
     elif live:
         fail("links to luz.html, which was not written")
     for word in ("luz render", "medido / measured"):

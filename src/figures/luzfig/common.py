@@ -226,8 +226,16 @@ def write_web_page(ctx):
     return r.returncode == 0
 
 
+def has_web_link(scene):
+    """Whether the page's URL can carry `scene`: a built-in scene or a JSON file (docs/WEB.md#url;
+    an NFF file, the SPD figure's, opens from disk in the page instead)."""
+    return scene.startswith("demo:") or scene.endswith(".json")
+
+
 def web_link(ctx, scene):
-    """luz.html opened on `scene` (demo:NAME, or a scene file of the page, its JSON inlined)."""
+    """luz.html opened on `scene` (has_web_link(): demo:NAME, or a JSON scene file of the page,
+    inlined)."""
+    assert has_web_link(scene), scene
     if scene.startswith("demo:"):
         return "luz.html#scene=" + urllib.parse.quote(scene, safe=":")
     with open(os.path.join(ctx.out, scene), encoding="utf-8") as f:

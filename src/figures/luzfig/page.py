@@ -73,10 +73,14 @@ def write(ctx, seconds):
         if f.scenes:
             links = ", ".join(f'<a href="{_e(s)}">{_e(s)}</a>' if not s.startswith("demo:")
                               else _e(s) for s in f.scenes)
-            if ctx.web:  # luz.html beside the page: each scene live
+            live = [s for s in f.scenes if common.has_web_link(s)]
+            if ctx.web and live:  # luz.html beside the page: each scene its URL carries live
                 links += " — " + ", ".join(
                     f'<a class="live" href="{_e(common.web_link(ctx, s))}">ao vivo / live</a>'
-                    for s in f.scenes)
+                    for s in live)
+            if ctx.web and len(live) < len(f.scenes):
+                links += (" — NFF: abra em luz.html a partir do disco / open it from disk in "
+                          '<a href="luz.html">luz.html</a>')
             parts.append(f"<p>Cena / scene: {links}</p>")
         if f.commands:
             parts.append("<pre>" + "\n".join(_e(c) for c in f.commands) + "</pre>")
