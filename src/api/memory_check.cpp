@@ -8,6 +8,7 @@
 #include <fstream>
 #include <string>
 
+#include "geometry/tessellate.h"
 #include "render/aov.h"
 #include "scene/input_error.h"
 #include "scene/message_text.h"
@@ -78,7 +79,8 @@ MemoryEstimate estimate_memory(const SceneDesc& desc, int aov_count) {
         if (o.type == ShapeType::mesh) {
             if (o.mesh) e.meshes += uint64_t(o.mesh->triangle_count()) * kMeshTriangleBytes;
         } else if (is_tessellated(desc, o)) {
-            e.tessellation += 2 * t * t * kTessellatedTriangleBytes;
+            e.tessellation +=
+                tessellated_triangle_count(o, static_cast<int>(t)) * kTessellatedTriangleBytes;
         }
     }
     return e;

@@ -24,8 +24,9 @@ struct MemoryEstimate {
 };
 
 /// The estimate for `desc` (its meshes already loaded): image; antialiasing (grid works in
-/// bounded tiles, adaptive keeps every pixel corner); ~2·t² triangles per curved shape at
-/// tessellation t in the zbuffer; per mesh triangle its share of vertices, indices and BVH;
+/// bounded tiles, adaptive keeps every pixel corner); the triangles of each curved shape at
+/// tessellation t in the zbuffer (tessellated_triangle_count(): ~t² a sphere, 2t a cylinder's
+/// side); per mesh triangle its share of vertices, indices and BVH;
 /// per object its description and built shape; `aov_count` per-term images (docs/SCENES.md#terms)
 /// asked for besides the image.
 MemoryEstimate estimate_memory(const SceneDesc& desc, int aov_count = 0);

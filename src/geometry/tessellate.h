@@ -2,6 +2,8 @@
 // shape's in shapes/<name>.h, dispatched by shapes.cpp.
 #pragma once
 
+#include <cstdint>
+
 #include "geometry/shape.h"
 #include "geometry/triangle_mesh.h"
 
@@ -14,6 +16,12 @@ namespace luz {
 /// as quads clipped to the view). A mesh appends its own triangles, in order, whatever the
 /// level (flat meshes: three vertices per triangle with the face normal).
 void tessellate(const Shape& s, int level, TriangleMesh& out);
+
+/// How many triangles tessellate() appends for object `o` at `level` (what each shape's emitter
+/// reserves; tests/geometry/tessellate_test.cpp compares): a sphere 2·n·(n/2 − 1), a torus
+/// 2·n·(n/2), a cylinder or frustum 2n and n a cap, a cone n and n its cap, a box 12, a triangle
+/// 1, a mesh its own, a plane none (n = level, at least 3). For the memory check.
+uint64_t tessellated_triangle_count(const ObjectDesc& o, int level);
 
 /// Area of the shape's surface as the tessellation would approximate it, in world space,
 /// for shapes without a transform's non-uniform scaling (tests compare against it).

@@ -40,6 +40,22 @@ TEST(Tessellate, NormalsAreUnitAndOutward) {
     }
 }
 
+// The memory check counts a tessellation's triangles before making it: the count must be the
+// tessellation's own, for every shape and variant (caps or not, cone or frustum), every level.
+TEST(Tessellate, TriangleCountIsTheTessellations) {
+    for (const auto& obj : all_objects()) {
+        const Shape s = make_shape(obj.desc, 0);
+        for (int level : {1, 3, 4, 5, 7, 16, 64, 65}) {
+            SCOPED_TRACE(obj.name + " level " + std::to_string(level));
+            EXPECT_EQ(tessellated_triangle_count(obj.desc, level),
+                      tessellated(s, level).triangle_count());
+        }
+    }
+    ObjectDesc plane;
+    plane.type = ShapeType::plane;
+    EXPECT_EQ(tessellated_triangle_count(plane, 64), 0u);
+}
+
 TEST(Tessellate, ClosedShapesAreWatertightAndConsistentlyOriented) {
     for (const auto& obj : all_objects()) {
         if (!obj.closed) continue;
