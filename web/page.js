@@ -156,10 +156,20 @@ worker.onmessage = (e) => {
   }
   if (m.type === 'bench') { if (state.benchWaiter) state.benchWaiter(m.ms); return; }
   if (m.gen !== state.gen) return; // an older edit's
-  if (m.type === 'error') { showError(m.message); status('error: the last good image is kept'); settle(); }
-  else if (m.type === 'scene') {
+  if (m.type === 'error') {
+    showError(m.message);
+    status('error: the last good image is kept');
+    // A scene that never loaded: back to the one whose image and panel are shown (the menu too).
+    if (state.good && state.source !== state.good.source) {
+      state.source = state.good.source;
+      state.sets = new Map(state.good.sets);
+      showSource(state.source);
+    }
+    settle();
+  } else if (m.type === 'scene') {
     showError('');
     state.scene = m.scene;
+    state.good = { source: state.source, sets: new Map(state.sets) };
     if (state.panelFor !== state.source) { buildPanel(m.scene); state.panelFor = state.source; }
   } else if (m.type === 'band') drawBand(m);
   else if (m.type === 'pass') {

@@ -96,6 +96,12 @@ def test_bad_scene_shows_the_cli_message_and_keeps_the_image(page, tmp_path):
     assert message in cli.stderr
     assert differing(before, canvas(page)) == (0, 0)
     assert not (tmp_path / "x.png").exists()
+    # The menu names the scene still shown, and an edit goes on with that scene.
+    assert page.evaluate("document.getElementById('scenes').value") == "demo:whitted"
+    page.evaluate("luzPage.set('lights.0.intensity', '[2, 0.5, 0.5]')")
+    page.evaluate("luzPage.idle()", timeout=120)
+    assert page.evaluate("luzPage.error()") == ""
+    assert differing(before, canvas(page))[0] > 1000
 
 
 def test_click_returns_that_pixels_ray_tree(page):
