@@ -193,6 +193,15 @@ TEST_F(ViewTest, RenderThreadCancelsPromptly) {
     EXPECT_LT(std::stod(m[2]), 250.0) << r.out;  // generous: the machine is shared
 }
 
+TEST_F(ViewTest, BenchmarkSaysWhenNoEditFoundARenderToCancel) {
+    // 16×12 renders end within the 20 ms before each edit: a line says so, not nothing.
+    const RunResult r = run_luz({"view", "demo:primitives", "--benchmark", "--width", "16",
+                                 "--height", "12", "--threads", "1"},
+                                dir_);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("cancel latency  "), std::string::npos) << r.out;
+}
+
 TEST_F(ViewTest, WithoutItsModuleViewSaysWhereItLookedAndRenderStillWorks) {
     // A copy of the binary in a folder of its own: luz_viewer.so is not beside it.
     fs::create_directories(dir_ / "bin");

@@ -88,6 +88,10 @@ int run_view_benchmark(const ViewOptions& o) {
         std::printf("cancel latency  median %.2f ms  max %.2f ms  (%zu edits during a render)\n",
                     latencies[latencies.size() / 2] * 1e3, latencies.back() * 1e3,
                     latencies.size());
+    } else {
+        std::printf(
+            "cancel latency  not measured: every render ended before its edit came (a "
+            "larger image gives an edit a render to cancel)\n");
     }
     return 0;
 }
