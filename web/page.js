@@ -16,6 +16,7 @@ const ENUMS = {
 };
 const state = {
   source: 'demo:whitted', sets: new Map(), term: -1, gen: 0, scene: null, limits: {},
+  good: null, // the last scene that loaded: { source, sets }
   error: '', done: false, panelFor: null, waiters: [], treeWaiter: null, benchWaiter: null,
 };
 let pass = null; // the canvas of the pass being drawn (its own resolution)

@@ -286,11 +286,11 @@ class NffReader {
     /// The N of `p N` or `pp N`, whole: read as a double (a count above 2²⁴ is exact too, a
     /// float's is not), after read_numbers() checked that it is one number.
     double vertex_count(Tokens& tokens, const char* name) {
-        const std::string_view text = tokens.rest();
+        std::string_view token;
+        Tokens(tokens).next(token);  // the token read_numbers() reads, as text
         float as_float = 0;
         read_numbers(tokens, &as_float, 1, 1, file_, line(), name);
         double count = as_float;
-        const std::string_view token = text.substr(0, text.find_first_of(" \t\r"));
         std::from_chars(token.data(), token.data() + token.size(), count);
         if (count != std::floor(count)) {
             fail_at(file_, line(),
